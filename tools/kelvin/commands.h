@@ -1,0 +1,21 @@
+// The kelvin subcommands. Each Add*Command registers a subcommand and its
+// options on the app and returns what main() runs when that subcommand was
+// given. Commands throw kelvin::ArgumentError for bad arguments (exit 2) and
+// kelvin::InputError for bad files (exit 1).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <vector>
+
+namespace kelvin::cli {
+
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<void()> run;
+};
+
+// Every subcommand, in the order `kelvin --help` lists them.
+std::vector<Command> AddCommands(CLI::App& app);
+
+}  // namespace kelvin::cli
