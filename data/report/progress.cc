@@ -36,6 +36,7 @@ double Progress::eta_seconds(double done) const {
 
 void Progress::Update(double done, const std::string& status) {
   if (!opt_.enabled || finished_) return;
+  if (elapsed_seconds() < opt_.delay_seconds) return;
   const double fraction = std::clamp(done / total_, 0.0, 1.0);
   if (terminal_) {
     const auto now = std::chrono::steady_clock::now();
@@ -50,7 +51,7 @@ void Progress::Update(double done, const std::string& status) {
 
 void Progress::Finish(const std::string& status) {
   if (!opt_.enabled || finished_) return;
-  Print(total_, status, true);
+  if (printed_ || elapsed_seconds() >= opt_.delay_seconds) Print(total_, status, true);
   finished_ = true;
 }
 
@@ -73,6 +74,7 @@ void Progress::Print(double done, const std::string& status, bool final_line) {
     fmt::print(opt_.stream, "{}\n", line);
   }
   std::fflush(opt_.stream);
+  printed_ = true;
 }
 
 }  // namespace kelvin

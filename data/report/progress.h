@@ -18,6 +18,9 @@ class Progress {
     double plain_every = 0.1;
     // Redraw interval in a terminal.
     double redraw_seconds = 0.2;
+    // Nothing is printed until the run has taken this long, so that short
+    // runs stay quiet; the final line appears only if something was printed.
+    double delay_seconds = 1.0;
     bool enabled = true;
     std::FILE* stream = stdout;
   };
@@ -44,6 +47,7 @@ class Progress {
   std::chrono::steady_clock::time_point last_draw_;
   double next_plain_fraction_ = 0.0;
   bool finished_ = false;
+  bool printed_ = false;
 };
 
 // "1h02m", "3m05s", "12.3s".

@@ -4,7 +4,7 @@ namespace kelvin::cli {
 
 std::vector<Command> AddCommands(CLI::App& app) {
   std::vector<Command> commands;
-  (void)app;
+  commands.push_back(AddSimulateCommand(app));
   return commands;
 }
 

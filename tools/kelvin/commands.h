@@ -15,6 +15,8 @@ struct Command {
   std::function<void()> run;
 };
 
+Command AddSimulateCommand(CLI::App& app);
+
 // Every subcommand, in the order `kelvin --help` lists them.
 std::vector<Command> AddCommands(CLI::App& app);
 

@@ -21,7 +21,7 @@ std::string ReadAll(std::FILE* f) {
 TEST(ProgressTest, PlainModePrintsOneLinePerTenthWhenNotATerminal) {
   std::FILE* f = std::tmpfile();
   ASSERT_NE(f, nullptr);
-  Progress p(1000, {.label = "sim", .unit = "steps", .plain_every = 0.1, .stream = f});
+  Progress p(1000, {.label = "sim", .unit = "steps", .plain_every = 0.1, .delay_seconds = 0.0, .stream = f});
   EXPECT_FALSE(p.is_terminal());
   for (int i = 1; i <= 1000; ++i) p.Update(i);
   p.Finish("ok");
@@ -34,6 +34,16 @@ TEST(ProgressTest, PlainModePrintsOneLinePerTenthWhenNotATerminal) {
   EXPECT_THAT(out, ::testing::HasSubstr("ETA"));
   EXPECT_THAT(out, ::testing::HasSubstr("sim: done 1000 steps"));
   EXPECT_EQ(out.find('\r'), std::string::npos);
+}
+
+TEST(ProgressTest, ShortRunsStayQuiet) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  Progress p(10, {.label = "quick", .delay_seconds = 30.0, .stream = f});
+  for (int i = 1; i <= 10; ++i) p.Update(i);
+  p.Finish();
+  EXPECT_EQ(ReadAll(f), "");
+  std::fclose(f);
 }
 
 TEST(ProgressTest, FormatDuration) {
