@@ -175,8 +175,10 @@ void Bridge::FillState(std::int64_t seq) {
   state_.propeller_rps_order = sim_->rps_order();
   if (controller_ && script_active_) {
     state_.maneuver_phase = static_cast<std::int8_t>(controller_->phase());
-  } else if (controller_) {
+  } else if (script_finished_) {
     state_.maneuver_phase = kelvin::ship_state_t::PHASE_FINISHED;
+  } else if (controller_) {
+    state_.maneuver_phase = kelvin::ship_state_t::PHASE_APPROACH;  // before the script starts
   } else {
     state_.maneuver_phase = kelvin::ship_state_t::PHASE_FREE;
   }
@@ -335,13 +337,16 @@ BridgeSummary Bridge::Run() {
         }
       }
     }
+    ++seq;
+    FillState(seq);
+    // The state that completes the maneuver still carries its phase; the
+    // ones after it are FINISHED (and the helm takes over).
     bool script_stopped = false;
     if (script_active_ && controller_->Finished(*sim_)) {
       script_active_ = false;
+      script_finished_ = true;
       script_stopped = true;
     }
-    ++seq;
-    FillState(seq);
     bool finite = true;
     for (double v : sim_->state()) finite = finite && std::isfinite(v);
 

@@ -117,6 +117,7 @@ class Bridge {
   std::unique_ptr<sim::Simulator> sim_;
   std::unique_ptr<sim::ManeuverController> controller_;
   bool script_active_ = false;
+  bool script_finished_ = false;
   HelmFilter helm_;
   std::unique_ptr<HelmHandler> helm_handler_;
   lcm::Subscription* helm_subscription_ = nullptr;
