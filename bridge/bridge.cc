@@ -54,6 +54,8 @@ void BridgeOptions::Validate() const {
   Require(std::isfinite(nmea_epoch), "NMEA epoch", nmea_epoch, "a finite time in s since the UNIX epoch");
   Require(std::isfinite(max_lag) && max_lag > 0, "max lag", max_lag, "a positive time in s");
   Require(std::isfinite(log_interval) && log_interval > 0, "log interval", log_interval, "a positive time in s");
+  Require(std::isfinite(helm.stale_timeout) && helm.stale_timeout > 0, "--stale-timeout", helm.stale_timeout,
+          "a positive time in s");
   helm.Validate();
 }
 

@@ -315,7 +315,10 @@ TEST(BridgeOptions, EachBadOptionHasOneClearMessage) {
   EXPECT_EQ(OptionError(o), "--nmea-rate 20: expected an NMEA rate between 1 and 10 Hz");
   o = {};
   o.helm.stale_timeout = 0;
-  EXPECT_EQ(OptionError(o), "helm option stale_timeout = 0: expected a positive time in s");
+  EXPECT_EQ(OptionError(o), "--stale-timeout 0: expected a positive time in s");
+  o = {};
+  o.helm.future_tolerance = -1;
+  EXPECT_EQ(OptionError(o), "helm option future_tolerance = -1: expected a non-negative time in s");
 }
 
 std::string ConstructionError(const BridgeOptions& o) {
