@@ -64,16 +64,10 @@ std::optional<sim::ManeuverSpec> ParseScript(const std::string& script) {
   return sim::ManeuverSpec::Parse(script);
 }
 
-class Bridge::HelmHandler {
- public:
-  explicit HelmHandler(Bridge* bridge) : bridge_(bridge) {}
-  void Handle(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
-    bridge_->helm_.Receive(rbuf->data, rbuf->data_size, RealtimeMicroseconds());
-  }
-
- private:
-  Bridge* bridge_;
-};
+void Bridge::OnHelm(const lcm_recv_buf_t* rbuf, const char* /*channel*/, void* user) {
+  auto* bridge = static_cast<Bridge*>(user);
+  bridge->helm_.Receive(rbuf->data, rbuf->data_size, RealtimeMicroseconds());
+}
 
 namespace {
 
@@ -132,8 +126,7 @@ Bridge::Bridge(const sim::ShipParameters& ship, const BridgeOptions& options, lc
   state_channel_ = options_.channel_prefix + "_STATE";
   helm_channel_ = options_.channel_prefix + "_HELM";
   event_channel_ = options_.channel_prefix + "_EVENT";
-  helm_handler_ = std::make_unique<HelmHandler>(this);
-  helm_subscription_ = lcm_.subscribe(helm_channel_, &HelmHandler::Handle, helm_handler_.get());
+  helm_subscription_ = lcm_subscribe(lcm_.getUnderlyingLCM(), helm_channel_.c_str(), &Bridge::OnHelm, this);
   if (!helm_subscription_) throw InputError(fmt::format("LCM: cannot subscribe to {}", helm_channel_));
   if (options_.nmea) nmea_ = std::make_unique<NmeaUdpSender>(*options_.nmea);
   first_overshoot_ = second_overshoot_ = first_overshoot_time_ = second_overshoot_time_ = kNaN;
@@ -144,7 +137,7 @@ Bridge::Bridge(const sim::ShipParameters& ship, const BridgeOptions& options, lc
 }
 
 Bridge::~Bridge() {
-  if (helm_subscription_) lcm_.unsubscribe(helm_subscription_);
+  if (helm_subscription_) lcm_unsubscribe(lcm_.getUnderlyingLCM(), helm_subscription_);
 }
 
 void Bridge::Publish(const std::string& channel, const auto& message) {

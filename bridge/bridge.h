@@ -99,7 +99,9 @@ class Bridge {
   const HelmFilter& helm_filter() const { return helm_; }
 
  private:
-  class HelmHandler;
+  // The helm callback, on LCM's C API: the C++ wrapper builds a std::string
+  // of the channel name for every message (an allocation for long names).
+  static void OnHelm(const lcm_recv_buf_t* rbuf, const char* channel, void* user);
   void DrainLcm();
   void ComputeNextState();
   void FillState(std::int64_t seq);
@@ -119,8 +121,7 @@ class Bridge {
   bool script_active_ = false;
   bool script_finished_ = false;
   HelmFilter helm_;
-  std::unique_ptr<HelmHandler> helm_handler_;
-  lcm::Subscription* helm_subscription_ = nullptr;
+  lcm_subscription_t* helm_subscription_ = nullptr;
   LocalOrigin origin_;
   std::unique_ptr<NmeaUdpSender> nmea_;
   std::string state_channel_, helm_channel_, event_channel_;
