@@ -5,9 +5,9 @@
 // each step runs next, on the same machine in the same run, as the peer.
 //
 //   bridge_pacing_bench [--seconds 60] [--rate 50] [--ship data/ships/kvlcc2.yaml]
-//                       [--markdown BENCHMARKS.md] [--check]
+//                       [--write BENCHMARKS.md] [--check]
 //
-// --markdown replaces the "Bridge pacing" section of that file (atomically);
+// --write replaces the bridge_pacing section of that file (atomically);
 // --check exits 1 unless the bridge meets the acceptance limits: mean period
 // error < 0.1 ms, p99 jitter < 2 ms, drift over the run < 2 ms.
 #include <fmt/format.h>
@@ -125,7 +125,7 @@ std::string Section(const Stats& b, const Stats& n, double rate, double seconds,
   std::ostringstream s;
   s << "## Bridge pacing\n\n"
     << fmt::format(
-           "`tools/bench/bridge_pacing_bench`: `kelvin bridge` streaming the KVLCC2 in real time at {:g} Hz for {:g} "
+           "Produced by `build/release/tools/bench/bridge_pacing_bench --write BENCHMARKS.md`: `kelvin bridge` streaming the KVLCC2 in real time at {:g} Hz for {:g} "
            "s (memq://, helm mode, {} integrator step(s) per state), publish instants on CLOCK_MONOTONIC. The peer is "
            "a naive loop doing the same steps and publication followed by `sleep_for(T)`, run right after on the "
            "same machine. Jitter is |t_k - t_(k-1) - T|; drift is (t_N - t_0) - N T.\n\n",
@@ -150,7 +150,10 @@ std::string Section(const Stats& b, const Stats& n, double rate, double seconds,
   return s.str();
 }
 
+// Replaces the block between <!-- bridge_pacing:begin/end --> (the
+// convention of every bench program), or appends it.
 void ReplaceSection(const std::string& path, const std::string& section) {
+  const std::string begin = "<!-- bridge_pacing:begin -->", end = "<!-- bridge_pacing:end -->";
   std::string text;
   {
     std::ifstream f(path);
@@ -158,15 +161,13 @@ void ReplaceSection(const std::string& path, const std::string& section) {
     ss << f.rdbuf();
     text = ss.str();
   }
-  if (text.empty()) text = "# Benchmarks\n\nFigures from the programs under `tools/bench/`, each run on one machine.\n";
-  const std::string head = "## Bridge pacing\n";
-  const std::size_t at = text.find(head);
-  if (at == std::string::npos) {
-    if (text.back() != '\n') text += '\n';
-    text += "\n" + section;
+  const std::string block = begin + "\n" + section + end;
+  const auto b = text.find(begin), e = text.find(end);
+  if (b != std::string::npos && e != std::string::npos && e > b) {
+    text.replace(b, e + end.size() - b, block);
   } else {
-    const std::size_t next = text.find("\n## ", at + head.size());
-    text = text.substr(0, at) + section + (next == std::string::npos ? "" : text.substr(next));
+    if (text.empty()) text = "# Benchmarks\n\nFigures measured on the project's 2-core Debian 12 machine.\n";
+    text += "\n" + block + "\n";
   }
   kelvin::data::WriteFileAtomically(path, text);
 }
@@ -192,7 +193,7 @@ int main(int argc, char** argv) {
       rate = std::stod(next());
     } else if (a == "--ship") {
       ship_file = next();
-    } else if (a == "--markdown") {
+    } else if (a == "--write") {
       markdown = next();
     } else if (a == "--check") {
       check = true;
