@@ -118,7 +118,9 @@ AnalysisWindow SelectWindow(const CaptiveRun& run, std::string_view source) {
   const double dt = t.size() > 1 ? (t.back() - t.front()) / static_cast<double>(t.size() - 1) : T;
   const double tol = 0.25 * dt;
   const double k0 = std::ceil((run.motion.t_ramp - tol) / T);
-  const double k1 = std::floor((t_end + tol) / T);
+  // The last sample stands for the interval [t_end, t_end + dt): uniform
+  // samples at T, T + dt, ..., 2T - dt cover one whole period.
+  const double k1 = std::floor((t_end + dt + tol) / T);
   w.periods = static_cast<int>(k1 - std::max(k0, 0.0));
   if (w.periods < 1) {
     Fail(source, run.name,

@@ -307,7 +307,9 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     so.parameter_tolerance = 1e-12;
     so.logging_type = ceres::SILENT;
     ceres::Solve(so, &problem, &summary);
-    for (int i = 0; i < kP; ++i) theta[i] = phi[i] * scale[i];
+    for (int i = 0; i < kP; ++i) {
+      if (!held[i]) theta[i] = phi[i] * scale[i];
+    }
     result.converged = summary.termination_type == ceres::CONVERGENCE;
     result.solver_report = summary.BriefReport();
 

@@ -155,10 +155,11 @@ void AddForceNoise(CaptiveCampaign& campaign, double fraction, std::uint64_t see
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   for (CaptiveRun& run : campaign.runs) {
+    const AnalysisWindow w = SelectWindow(run, "AddForceNoise");
     for (auto& f : run.force) {
       double sum2 = 0;
-      for (double x : f) sum2 += x * x;
-      const double sigma = fraction * std::sqrt(sum2 / static_cast<double>(f.size()));
+      for (std::size_t i = w.begin; i < w.end; ++i) sum2 += f[i] * f[i];
+      const double sigma = fraction * std::sqrt(sum2 / static_cast<double>(w.end - w.begin));
       for (double& x : f) x += sigma * normal(rng);
     }
   }

@@ -60,7 +60,9 @@ CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model, const Campa
                                  const VirtualCaptiveOptions& options);
 
 // Adds Gaussian noise of standard deviation `fraction` x (RMS of the channel
-// over the run) to every force sample (std::mt19937_64 seeded with `seed`).
+// over the run's analysis window, i.e. after the ramp-up) to every force
+// sample (std::mt19937_64 seeded with `seed`). Channels that are zero over
+// the window (Y and N at zero drift) stay noise-free.
 void AddForceNoise(CaptiveCampaign& campaign, double fraction, std::uint64_t seed);
 
 }  // namespace kelvin::ident
