@@ -69,10 +69,13 @@ void SimulatorOptions::Validate() const {
 }
 
 Simulator::Simulator(const MmgModel<double>& model, const SimulatorOptions& options)
-    : model_(model), options_(options), sun_(std::make_unique<Sundials>()) {
+    : Simulator(std::make_unique<MmgPlant>(model), options) {}
+
+Simulator::Simulator(std::unique_ptr<const Plant> plant, const SimulatorOptions& options)
+    : plant_(std::move(plant)), options_(options), sun_(std::make_unique<Sundials>()) {
   options_.Validate();
-  rudder_.set_rate(model_.ship().limits.rudder_rate);
-  rps_.set_rate(model_.ship().limits.rps_rate);
+  rudder_.set_rate(plant_->ship().limits.rudder_rate);
+  rps_.set_rate(plant_->ship().limits.rps_rate);
   CheckFlag(SUNContext_Create(nullptr, &sun_->ctx), "SUNContext_Create");
   sun_->y = N_VNew_Serial(kStateSize, sun_->ctx);
   sun_->abstol = N_VNew_Serial(kStateSize, sun_->ctx);
@@ -88,19 +91,19 @@ long Simulator::steps_taken() const {
 }
 
 void Simulator::Rhs(double t, const double* y, double* ydot) const {
-  model_.Derivative(y, rudder_.PositionAt(t), rps_.PositionAt(t), ydot);
+  plant_->Derivative(y, rudder_.PositionAt(t), rps_.PositionAt(t), ydot);
 }
 
 void Simulator::Reset(double t0, const StateVector& state, double delta, double n) {
   t_ = t0;
   y_ = state;
-  const double dmax = model_.ship().limits.rudder_max;
+  const double dmax = plant_->ship().limits.rudder_max;
   rudder_.Reset(t0, std::clamp(delta, -dmax, dmax));
   rps_.Reset(t0, n);
   double* yd = N_VGetArrayPointer(sun_->y);
   for (int i = 0; i < kStateSize; ++i) yd[i] = y_[i];
   if (options_.method == SimulatorOptions::Method::kAdaptive) {
-    const double L = model_.ship().principal.Lpp;
+    const double L = plant_->ship().principal.Lpp;
     const double U = std::max(std::hypot(state[kU], state[kV]), 1e-3);
     double* at = N_VGetArrayPointer(sun_->abstol);
     at[kX] = at[kY] = options_.atol * L;
@@ -115,7 +118,6 @@ void Simulator::Reset(double t0, const StateVector& state, double delta, double 
       // non-stiff 6-state system.
       sun_->nls = SUNNonlinSol_FixedPoint(sun_->y, 0, sun_->ctx);
       CheckFlag(CVodeSetNonlinearSolver(sun_->cvode, sun_->nls), "CVodeSetNonlinearSolver");
-      CheckFlag(CVodeRootInit(sun_->cvode, 1, HeadingRoot), "CVodeRootInit");
       CheckFlag(CVodeSetMaxNumSteps(sun_->cvode, options_.max_steps), "CVodeSetMaxNumSteps");
       CheckFlag(CVodeSetMaxStep(sun_->cvode, 0.5 * L / U), "CVodeSetMaxStep");
     } else {
@@ -148,7 +150,7 @@ void Simulator::Restart() {
 }
 
 void Simulator::SetRudderOrder(double delta_order) {
-  const double dmax = model_.ship().limits.rudder_max;
+  const double dmax = plant_->ship().limits.rudder_max;
   const double order = std::clamp(delta_order, -dmax, dmax);
   if (order == rudder_.order() && rudder_.PositionAt(t_) == order) return;
   rudder_.SetOrder(t_, order);
@@ -156,7 +158,7 @@ void Simulator::SetRudderOrder(double delta_order) {
 }
 
 void Simulator::SetRpsOrder(double n_order) {
-  const auto& ship = model_.ship();
+  const auto& ship = plant_->ship();
   const double lo = ship.propeller.reverse_kt ? -ship.limits.rps_max : 0.0;
   const double order = std::clamp(n_order, lo, ship.limits.rps_max);
   if (order == rps_.order() && rps_.PositionAt(t_) == order) return;

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "simulator/integrators/actuators.h"
+#include "simulator/integrators/plant.h"
 #include "simulator/mmg/mmg_model.h"
 
 namespace kelvin::sim {
@@ -32,7 +33,10 @@ struct SimulatorOptions {
 
 class Simulator {
  public:
+  // Integrates the MMG model (the usual case).
   Simulator(const MmgModel<double>& model, const SimulatorOptions& options);
+  // Integrates any plant (e.g. a LinearPlant in tests).
+  Simulator(std::unique_ptr<const Plant> plant, const SimulatorOptions& options);
   ~Simulator();
   Simulator(const Simulator&) = delete;
   Simulator& operator=(const Simulator&) = delete;
@@ -62,7 +66,8 @@ class Simulator {
   double rudder_order() const { return rudder_.order(); }
   double rps() const { return rps_.PositionAt(t_); }
   double rps_order() const { return rps_.order(); }
-  const MmgModel<double>& model() const { return model_; }
+  const ShipParameters& ship() const { return plant_->ship(); }
+  const Plant& plant() const { return *plant_; }
   const SimulatorOptions& options() const { return options_; }
   long steps_taken() const;
 
@@ -74,7 +79,7 @@ class Simulator {
   struct Sundials;
   void Restart();
 
-  MmgModel<double> model_;
+  std::unique_ptr<const Plant> plant_;
   SimulatorOptions options_;
   RateLimitedActuator rudder_;
   RateLimitedActuator rps_;

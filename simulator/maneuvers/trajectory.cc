@@ -15,6 +15,15 @@ double Hermite(double t0, double t1, double y0, double y1, double d0, double d1,
   return (2 * s3 - 3 * s2 + 1) * y0 + (s3 - 2 * s2 + s) * h * d0 + (-2 * s3 + 3 * s2) * y1 + (s3 - s2) * h * d1;
 }
 
+// Time derivative of the Hermite interpolant.
+double HermiteSlope(double t0, double t1, double y0, double y1, double d0, double d1, double t) {
+  const double h = t1 - t0;
+  if (h <= 0) return d0;
+  const double s = (t - t0) / h;
+  const double s2 = s * s;
+  return ((6 * s2 - 6 * s) * y0 + (-6 * s2 + 6 * s) * y1) / h + (3 * s2 - 4 * s + 1) * d0 + (3 * s2 - 2 * s) * d1;
+}
+
 double Dx(const TrajectorySample& s) { return s.u * std::cos(s.psi) - s.v * std::sin(s.psi); }
 double Dy(const TrajectorySample& s) { return s.u * std::sin(s.psi) + s.v * std::cos(s.psi); }
 
@@ -82,17 +91,28 @@ double Trajectory::FirstCrossing(double t_from, double level, double TrajectoryS
 }
 
 double Trajectory::PathLength(double t_a, double t_b) const {
-  // Composite Simpson on the interpolated speed, fine enough to be exact to
-  // the interpolation accuracy.
-  const int n = 2000;
-  const double h = (t_b - t_a) / n;
-  auto speed = [&](double t) {
-    const TrajectorySample s = At(t);
-    return std::hypot(s.u, s.v);
-  };
-  double sum = speed(t_a) + speed(t_b);
-  for (int k = 1; k < n; ++k) sum += (k % 2 ? 4.0 : 2.0) * speed(t_a + k * h);
-  return sum * h / 3.0;
+  // Integral of the speed of the Hermite position interpolant, by 5-point
+  // Gauss-Legendre on each piece between samples, so that the path length is
+  // consistent with the interpolated positions.
+  static constexpr double kNodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                                       0.9061798459386640};
+  static constexpr double kWeights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                         0.4786286704993665, 0.2369268850561891};
+  double total = 0;
+  for (std::size_t i = 0; i + 1 < samples_.size(); ++i) {
+    const TrajectorySample& a = samples_[i];
+    const TrajectorySample& b = samples_[i + 1];
+    const double lo = std::max(a.t, t_a), hi = std::min(b.t, t_b);
+    if (hi <= lo) continue;
+    const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+    for (int k = 0; k < 5; ++k) {
+      const double t = mid + half * kNodes[k];
+      const double vx = HermiteSlope(a.t, b.t, a.x, b.x, Dx(a), Dx(b), t);
+      const double vy = HermiteSlope(a.t, b.t, a.y, b.y, Dy(a), Dy(b), t);
+      total += half * kWeights[k] * std::hypot(vx, vy);
+    }
+  }
+  return total;
 }
 
 void Trajectory::Write(data::H5Writer& out, const std::string& group) const {

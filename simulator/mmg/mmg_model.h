@@ -131,8 +131,9 @@ class MmgModel {
     }
     out.K_T = K_T;
     const double D4 = D * D * D * D;
-    // rho n^2 D^4 K_T; for reverse rotation the thrust acts astern.
-    out.thrust = p.rho * n * abs(n) * D4 * K_T;
+    // T = rho n^2 D^4 K_T; astern thrust comes from a negative K_T of the
+    // reverse-rotation curve.
+    out.thrust = p.rho * n * n * D4 * K_T;
     out.propeller.X = (1.0 - pp.t_P) * out.thrust;
 
     // Rudder (paper eqs. 17-25). The propeller-race term is written as

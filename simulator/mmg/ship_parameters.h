@@ -70,8 +70,9 @@ struct PropellerParameters {
   double x_P_prime = 0;           // longitudinal propeller position / Lpp
   double C1 = 2.0;                // wake change in maneuvering (paper eq. 16)
   double C2_pos = 1.6, C2_neg = 1.1;
-  // Reverse thrust (n < 0): K_T for the fourth quadrant as k0 + k1 J + k2 J^2 with
-  // J = u (1 - w_P0) / (n D_p) (negative). Absent for most published MMG sets.
+  // Reverse rotation (n < 0): K_T = k0 + k1 J + k2 J^2 with J = u_P / (n D_p)
+  // (negative when going ahead), negative K_T meaning astern thrust
+  // (T = rho n^2 D^4 K_T). Absent for most published MMG sets.
   std::optional<std::array<double, 3>> reverse_kt;
 };
 

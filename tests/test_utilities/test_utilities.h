@@ -39,10 +39,17 @@ inline std::filesystem::path EnvPath(const char* var, const char* fallback) {
   return v ? std::filesystem::path(v) : std::filesystem::path(fallback);
 }
 
-// The repository root (set by ctest).
-inline std::filesystem::path SourceDir() { return EnvPath("KELVIN_SOURCE_DIR", "."); }
+#ifndef KELVIN_DEFAULT_SOURCE_DIR
+#define KELVIN_DEFAULT_SOURCE_DIR "."
+#endif
+#ifndef KELVIN_DEFAULT_TOOLS_DIR
+#define KELVIN_DEFAULT_TOOLS_DIR "./tools"
+#endif
+
+// The repository root (set by ctest, or compiled in for direct runs).
+inline std::filesystem::path SourceDir() { return EnvPath("KELVIN_SOURCE_DIR", KELVIN_DEFAULT_SOURCE_DIR); }
 // The directory holding the built `kelvin` program.
-inline std::filesystem::path ToolsDir() { return EnvPath("KELVIN_TOOLS_DIR", "./tools"); }
+inline std::filesystem::path ToolsDir() { return EnvPath("KELVIN_TOOLS_DIR", KELVIN_DEFAULT_TOOLS_DIR); }
 // ../shared beside the repository (published reference data), if present.
 inline std::filesystem::path SharedDir() { return SourceDir().parent_path() / "shared"; }
 

@@ -52,3 +52,50 @@ TEST(KelvinCliTest, HelpListsCommands) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string Ship() { return (kelvin::testing::SourceDir() / "data/ships/kvlcc2.yaml").string(); }
+
+TEST(KelvinSimulateTest, UnknownManeuverExitsTwoWithOneLine) {
+  kelvin::testing::ScopedTempDir dir;
+  const auto r = RunCommand(Kelvin() + " simulate " + Ship() + " -m loop:3 -o " + dir.path().string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(CountLines(r.output), 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("maneuver 'loop:3': unknown maneuver kind 'loop'"));
+}
+
+TEST(KelvinSimulateTest, MissingShipFileExitsTwo) {
+  const auto r = RunCommand(Kelvin() + " simulate /nonexistent/ship.yaml");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("/nonexistent/ship.yaml"));
+}
+
+TEST(KelvinSimulateTest, UnphysicalShipExitsOneNamingTheParameter) {
+  kelvin::testing::ScopedTempDir dir;
+  const auto bad = dir / "bad.yaml";
+  const auto r0 = RunCommand("sed 's/A_R: 0.0539/A_R: 0.0/' " + Ship() + " > " + bad.string());
+  ASSERT_EQ(r0.exit_code, 0);
+  const auto r = RunCommand(Kelvin() + " simulate " + bad.string() + " -o " + dir.path().string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(CountLines(r.output), 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("parameter 'rudder.A_R' = 0"));
+}
+
+TEST(KelvinSimulateTest, WritesResultsThatH5pyAndThePlotScriptRead) {
+  kelvin::testing::ScopedTempDir dir;
+  const auto r = RunCommand(Kelvin() + " simulate " + Ship() + " -m zigzag:20/20:port -o " + dir.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("zig-zag 20/20: first overshoot"));
+  const auto h5 = dir / "KVLCC2_zigzag_20_20_port.h5";
+  ASSERT_TRUE(std::filesystem::exists(h5));
+  if (RunCommand("/usr/bin/python3 -c 'import h5py, matplotlib'").exit_code != 0) {
+    GTEST_SKIP() << "python3-h5py/python3-matplotlib not installed";
+  }
+  const auto plot = RunCommand("/usr/bin/python3 " + (kelvin::testing::SourceDir() / "tools/plot_maneuver.py").string() +
+                               " " + h5.string());
+  ASSERT_EQ(plot.exit_code, 0) << plot.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "KVLCC2_zigzag_20_20_port.png"));
+}
+
+}  // namespace

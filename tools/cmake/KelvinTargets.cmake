@@ -33,6 +33,9 @@ function(kelvin_add_test name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR})
+  target_compile_definitions(${name} PRIVATE
+    KELVIN_DEFAULT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    KELVIN_DEFAULT_TOOLS_DIR="${PROJECT_BINARY_DIR}/tools")
   kelvin_project_options(${name})
   if(NOT ARG_LABELS)
     set(ARG_LABELS unit)

@@ -1,0 +1,125 @@
+// Ship files: loading, every bad-input path, and Froude scaling.
+#include "simulator/mmg/ship_parameters.h"
+
+#include <gmock/gmock.h>
+
+#include "data/schema/errors.h"
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "simulator/maneuvers/runner.h"
+#include "tests/simulator/simulator_test_utilities.h"
+
+namespace kelvin::sim {
+namespace {
+
+using kelvin::testing::ScopedTempDir;
+using ::testing::HasSubstr;
+
+std::string Kvlcc2Text() {
+  std::ifstream in(kelvin::testing::SourceDir() / "data/ships/kvlcc2.yaml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Writes the KVLCC2 file with one line's value replaced.
+std::filesystem::path Modified(const ScopedTempDir& dir, const std::string& pattern, const std::string& repl) {
+  const std::string text = std::regex_replace(Kvlcc2Text(), std::regex(pattern), repl);
+  const auto path = dir / "ship.yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(ShipParametersTest, LoadsKvlcc2) {
+  // Yasukawa & Yoshimura (2015), Tables 1-3.
+  const ShipParameters s = testing::Kvlcc2();
+  EXPECT_EQ(s.name, "KVLCC2");
+  EXPECT_DOUBLE_EQ(s.principal.Lpp, 7.0);
+  EXPECT_DOUBLE_EQ(s.hull.Y_v, -0.315);
+  EXPECT_DOUBLE_EQ(s.hull.N_rrr, -0.013);
+  EXPECT_DOUBLE_EQ(s.hull.J_z, 0.011);
+  EXPECT_DOUBLE_EQ(s.propeller.x_P_prime, -0.48);
+  EXPECT_DOUBLE_EQ(s.rudder.gamma_R_plus, 0.640);
+  EXPECT_NEAR(s.limits.rudder_rate, 15.8 * M_PI / 180, 1e-15);
+  EXPECT_NEAR(s.mass(), 1025.0 * 3.27, 1e-9);
+  EXPECT_NEAR(s.I_zG(), s.mass() * 1.75 * 1.75, 1e-9);
+}
+
+struct BadShip {
+  const char* pattern;
+  const char* replacement;
+  const char* message;
+};
+
+class BadShipTest : public ::testing::TestWithParam<BadShip> {};
+
+TEST_P(BadShipTest, GivesOneClearError) {
+  ScopedTempDir dir;
+  const auto path = Modified(dir, GetParam().pattern, GetParam().replacement);
+  try {
+    LoadShip(path);
+    FAIL() << "accepted " << GetParam().replacement;
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(path.string()));
+    EXPECT_THAT(e.what(), HasSubstr(GetParam().message));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, BadShipTest,
+    ::testing::Values(
+        BadShip{"displacement: 3.27", "displacement: -3.27",
+                "parameter 'principal.displacement' = -3.27: expected a positive finite value"},
+        BadShip{"A_R: 0.0539", "A_R: 0", "parameter 'rudder.A_R' = 0: expected a positive finite value"},
+        BadShip{"t_P: 0.220", "t_P: 1.5", "parameter 'propeller.t_P' = 1.5: expected a value in [0, 1)"},
+        BadShip{"x_G: 0.25", "x_G: 4.0", "parameter 'principal.x_G' = 4: expected |x_G| < Lpp/2"},
+        BadShip{"m_y_prime: 0.223", "m_y_prime: -0.2", "'hull.m_y_prime' = -0.2: expected a non-negative added mass"},
+        BadShip{"  Y_vvr: 0.379", "  Y_vvrr: 0.379", "unknown key 'hull.Y_vvrr'"},
+        BadShip{"  Y_v: -0.315\n", "", "missing required key 'hull.Y_v'"},
+        BadShip{"Lpp: 7.00 ", "Lpp: seven ", "key 'principal.Lpp' = 'seven': expected a number"}));
+
+TEST(ShipParametersTest, FroudeScalingKeepsNondimensionalManeuvers) {
+  // The same nondimensional model at full scale: distances scale with
+  // lambda, times with sqrt(lambda); advance / L is unchanged.
+  const ShipParameters model = testing::Kvlcc2();
+  const ShipParameters full = ScaleShip(model, model.scale, false);
+  EXPECT_NEAR(full.principal.Lpp, 320.0, 0.01);
+  EXPECT_NEAR(full.approach_speed, 1.179 * std::sqrt(45.714), 1e-9);
+  const auto spec = ManeuverSpec::Parse("turning:35:stbd");
+  const auto a = RunManeuver(MmgModel<double>(model), spec, {});
+  const auto b = RunManeuver(MmgModel<double>(full), spec, {});
+  EXPECT_NEAR(a.turning->advance / a.Lpp, b.turning->advance / b.Lpp, 1e-6);
+  EXPECT_NEAR(a.turning->tactical_diameter / a.Lpp, b.turning->tactical_diameter / b.Lpp, 1e-6);
+  EXPECT_NEAR(a.turning->time_to_90 * std::sqrt(model.scale), b.turning->time_to_90, 1e-4 * b.turning->time_to_90);
+}
+
+TEST(ShipParametersTest, FrictionCorrectionNeedsWettedAreaAndLowersR0) {
+  ShipParameters model = testing::Kvlcc2();
+  try {
+    ScaleShip(model, model.scale, true);
+    FAIL();
+  } catch (const ModelError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("needs principal.wetted_area"));
+  }
+  model.principal.wetted_area = 9.0;  // m^2, a plausible L7 wetted area
+  const ShipParameters full = ScaleShip(model, model.scale, true);
+  // C_F falls with Reynolds number, so the full-scale resistance coefficient is lower.
+  EXPECT_LT(full.hull.R0, model.hull.R0);
+  const double Re_m = 1.179 * 7.0 / model.principal.nu;
+  const double Re_s = Re_m * std::pow(model.scale, 1.5);
+  const double expected =
+      (Ittc57FrictionCoefficient(Re_s) - Ittc57FrictionCoefficient(Re_m)) * model.principal.wetted_area / (7.0 * 0.46);
+  EXPECT_NEAR(full.hull.R0 - model.hull.R0, expected, 1e-12);
+}
+
+TEST(Ittc57Test, KnownValue) {
+  // 0.075 / (log10(1e7) - 2)^2 = 0.075 / 25
+  EXPECT_NEAR(Ittc57FrictionCoefficient(1e7), 0.003, 1e-15);
+}
+
+}  // namespace
+}  // namespace kelvin::sim
