@@ -85,6 +85,16 @@ void EvaluateAll(const sim::ShipParameters& ship, const std::vector<RunData>& ru
   if (jacobian) jacobian->resize(static_cast<Eigen::Index>(rows), kP);
   if (residual) residual->resize(static_cast<Eigen::Index>(rows));
   Eigen::Index row = 0;
+  if (!jacobian) {  // residuals only: plain doubles
+    for (const RunData& r : runs) {
+      for (const Sample& s : r.samples) {
+        std::array<double, 3> e;
+        SampleResidual{&ship, &s, &unit}(theta, e.data());
+        for (int c = 0; c < 3; ++c, ++row) (*residual)(row) = e[c];
+      }
+    }
+    return;
+  }
   for (const RunData& r : runs) {
     for (const Sample& s : r.samples) {
       std::array<Jet, 3> e;
@@ -258,7 +268,7 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
   ceres::Solver::Summary summary;
   std::array<double, kP> scale{};
   std::array<double, kP> phi{};
-  auto solve = [&]() {
+  auto solve = [&](bool with_covariance) {
     // Column norms of the whitened Jacobian (the model is linear in theta,
     // so they do not depend on it), plus the prior rows.
     Eigen::MatrixXd jac;
@@ -299,7 +309,7 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
       problem.SetManifold(phi.data(), new ceres::SubsetManifold(kP, held_indices));
     }
     ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
+    so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     so.max_num_iterations = options.max_iterations;
     so.num_threads = 1;
     so.function_tolerance = 1e-14;
@@ -316,7 +326,7 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     // Covariance of the free coefficients; DENSE_SVD with the near-null
     // directions dropped (they are reported as not identifiable below).
     result.covariance.setZero();
-    if (static_cast<int>(held_indices.size()) < kP) {
+    if (with_covariance && static_cast<int>(held_indices.size()) < kP) {
       ceres::Covariance::Options co;
       co.algorithm_type = ceres::DENSE_SVD;
       co.null_space_rank = -1;
@@ -378,13 +388,16 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
   };
 
   // Fit, re-weight, fit; then flag and (optionally) hold the unidentifiable
-  // coefficients and repeat until nothing new is flagged.
+  // coefficients and refit with the noise levels already estimated, until
+  // nothing new is flagged.
   for (int round = 0; round <= kP; ++round) {
+    if (round == 0) {
+      set_weights();
+      solve(false);
+      residual_statistics();
+    }
     set_weights();
-    solve();
-    residual_statistics();
-    set_weights();
-    solve();
+    solve(true);
     residual_statistics();
     for (std::size_t r = 0; r < runs.size(); ++r) {
       for (int c = 0; c < 3; ++c) result.runs[r].sigma[c] = sigma[r][c];
@@ -475,8 +488,6 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
       theta[i] = prior != options.priors.end() ? prior->second.mean : 0.0;
       result.note[i] += prior != options.priors.end() ? "; held at its prior mean" : "; term dropped (held at 0)";
     }
-    // Reset the noise estimate for the next round.
-    for (std::size_t r = 0; r < runs.size(); ++r) sigma[r] = reference[r];
   }
 
   for (int i = 0; i < kP; ++i) {
