@@ -110,7 +110,7 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
       y << YAML::Flow << YAML::BeginMap;
       y << YAML::Key << "name" << YAML::Value << e.name;
       y << YAML::Key << "source" << YAML::Value << e.source;
-      if (e.amplitude > 0) y << YAML::Key << "amplitude" << YAML::Value << e.amplitude;
+      if (e.amplitude > 0) y << YAML::Key << "amplitude" << YAML::Value << Number(e.amplitude);
       y << YAML::Key << "value" << YAML::Value << Number(e.value);
       double joint = 0;
       if (ClassicalCounterpart(e.name, fit.coefficients, &joint)) {

@@ -53,6 +53,15 @@ TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
   EXPECT_EQ(cov.values.size(), 400u);
   EXPECT_TRUE(h5.Has("/runs/sway_v0.100/fitted_Y"));
   EXPECT_TRUE(h5.Has("/runs/sway_v0.100/measured_Y"));
+  // The plot script draws measured against fitted forces, one PNG per run.
+  if (!testing::HaveProgram("/usr/bin/python3")) GTEST_SKIP() << "no /usr/bin/python3";
+  const auto plot = testing::RunCommand("/usr/bin/python3 " +
+                                        (testing::SourceDir() / "tools/plot_identification.py").string() + " " +
+                                        (dir / "kvlcc2_derivatives.h5").string() + " -o " + (dir / "plots").string());
+  ASSERT_EQ(plot.exit_code, 0) << plot.output;
+  for (const char* run : {"drift_+20.0deg", "sway_v0.200", "yaw_r0.600", "yaw_drift_+12.0deg_r0.400"}) {
+    EXPECT_GT(std::filesystem::file_size(dir / "plots" / (std::string(run) + ".png")), 10000u) << run;
+  }
 }
 
 TEST(IdentifyCliTest, CsvRunsWithShipFile) {
