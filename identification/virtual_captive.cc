@@ -66,6 +66,10 @@ void CampaignDesign::Validate() const {
   for (double a : yaw_amplitudes) {
     if (!(a > 0)) fail("yaw_amplitudes", a, "positive amplitudes r'_a");
   }
+  for (const Circular& c : circular) {
+    if (!(std::abs(c.beta) < 0.5 * std::numbers::pi)) fail("circular.beta", c.beta, "|beta| < pi/2 rad");
+    if (!(std::isfinite(c.r_prime) && c.r_prime != 0)) fail("circular.r_prime", c.r_prime, "a non-zero yaw rate");
+  }
   if (!yaw_drift_angles.empty() && !(yaw_drift_amplitude > 0)) {
     fail("yaw_drift_amplitude", yaw_drift_amplitude, "a positive amplitude r'_a");
   }
@@ -147,6 +151,11 @@ CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model, const Campa
     c.runs.push_back(GenerateRun(
         model, fmt::format("yaw_drift_{:+.1f}deg_r{:.3f}", beta * kRadToDeg, design.yaw_drift_amplitude), m,
         options));
+  }
+  for (const CampaignDesign::Circular& arm : design.circular) {
+    MotionParameters m{.kind = MotionKind::kCircularMotion, .U = design.U, .beta = arm.beta, .r_prime = arm.r_prime};
+    c.runs.push_back(
+        GenerateRun(model, fmt::format("circular_{:+.1f}deg_r{:.3f}", arm.beta * kRadToDeg, arm.r_prime), m, options));
   }
   return c;
 }

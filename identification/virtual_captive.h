@@ -47,6 +47,11 @@ struct CampaignDesign {
   std::vector<double> yaw_amplitudes;        // r'_a = psi_a omega Lpp / U, pure yaw runs
   std::vector<double> yaw_drift_angles;      // rad, yaw with drift runs (at yaw_drift_amplitude)
   double yaw_drift_amplitude = 0.4;          // r'_a of the yaw with drift runs
+  struct Circular {
+    double beta = 0;     // rad
+    double r_prime = 0;  // r Lpp / U
+  };
+  std::vector<Circular> circular;            // circular motion (rotating arm) runs
 
   void Validate() const;  // throws kelvin::ArgumentError naming the field
 };

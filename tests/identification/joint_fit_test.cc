@@ -148,6 +148,22 @@ TEST(JointFitTest, CrossTermsWithoutNoiseAreFlaggedOrExact) {
   }
 }
 
+// Circular motion (rotating arm) instead of yaw with drift also separates
+// the cross terms (steady v' and r' together).
+TEST(JointFitTest, CircularMotionRunsIdentifyCrossTerms) {
+  const sim::ShipParameters ship = Kvlcc2();
+  CampaignDesign d = StandardDesign(ship.approach_speed, false);
+  for (double beta : {-0.2, -0.1, 0.0, 0.1, 0.2}) {
+    for (double r : {0.2, 0.4, 0.6}) d.circular.push_back({beta, r});
+  }
+  const JointFitResult fit = FitCampaign(GenerateCampaign(sim::MmgModel<double>(ship), d, {}), {}, "arm");
+  for (int i : {kXvr, kYvvr, kYvrr, kNvvr, kNvrr}) {
+    SCOPED_TRACE(std::string(kNames[i]));
+    EXPECT_TRUE(fit.Identified(i)) << fit.note[i];
+    EXPECT_LE(std::abs(fit.coefficients[i] - ship.hull[i]), 0.005 * std::abs(ship.hull[i]));
+  }
+}
+
 TEST(JointFitTest, CorrelationWarningForYrAndAddedMassX) {
   // -m_x u r and Y_r r' carry the same phase in pure yaw; only the surge
   // acceleration of the PMM yaw law separates them.
