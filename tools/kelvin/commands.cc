@@ -7,6 +7,7 @@ std::vector<Command> AddCommands(CLI::App& app) {
   commands.push_back(AddHullCommand(app));
   commands.push_back(AddSimulateCommand(app));
   commands.push_back(AddBridgeCommand(app));
+  commands.push_back(AddIdentifyCommand(app));
   return commands;
 }
 
