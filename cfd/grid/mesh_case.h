@@ -1,0 +1,80 @@
+// Mesh case files (YAML) and the `kelvin mesh` job: builds the structured
+// hull-fitted grid or runs the snappyHexMesh path, for one grid or a family
+// with a constant refinement ratio, and writes each grid as an OpenFOAM
+// polyMesh, a .vtu and a quality report.
+//
+//   mesh:
+//     method: structured        # structured | snappy
+//     hull:                     # exactly one of
+//       wigley: {length: 2.5, beam: 0.25, draft: 0.15625}
+//       ship: ../ships/dtc.yaml  # a ship file with a geometry section
+//     flow:                     # for the wall spacing: reynolds, or speed (+ viscosity)
+//       reynolds: 5.0e6
+//     y_plus: 1.0
+//     domain: {upstream: 1, downstream: 2, half_width: 1, depth: 1}   # hull lengths
+//     structured: {cells_hull: 60, ...}   # HullGridOptions
+//     snappy: {base_cells_per_length: 10, hull_level: 3, ...}   # SnappyOptions
+//     family: {ratio: 1.41421356}
+//   output:
+//     directory: grids/wigley   # relative to the case file
+//     vtu: true
+//
+// Paths are relative to the case file. Unknown keys are errors that list the
+// valid ones.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cfd/geometry/triangle_surface.h"
+#include "cfd/grid/hull_grid.h"
+#include "cfd/grid/snappy_mesher.h"
+
+namespace kelvin::cfd {
+
+enum class MeshMethod { kStructured, kSnappy };
+
+struct MeshCase {
+  std::string source;  // case file, for messages
+  MeshMethod method = MeshMethod::kStructured;
+  // Hull: the Wigley formula, or a ship file (surface placed by LoadHull).
+  bool wigley = false;
+  double wigley_length = 0, wigley_beam = 0, wigley_draft = 0;  // m
+  std::filesystem::path ship_file;
+  double reynolds = 0;
+  double y_plus = 1.0;
+  HullGridOptions structured;  // domain, reynolds and y_plus filled in
+  SnappyOptions snappy;        // domain, reynolds and y_plus filled in
+  double family_ratio = 1.4142135623730951;
+  std::filesystem::path output_directory;
+  bool write_vtu = true;
+};
+
+// Reads and checks a case file. Throws ConfigError naming the file, the line,
+// the key, the value and what was expected.
+MeshCase LoadMeshCase(const std::filesystem::path& path);
+MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
+                       const std::filesystem::path& base_dir);
+
+// One written grid of a family (grid 1 is the finest).
+struct GridSummary {
+  int level = 1;
+  std::filesystem::path directory;
+  MeshQuality quality;
+  double hull_volume = 0;    // m^3, enclosed by the hull patch and z = 0
+  YPlusEstimate y_plus;
+  double seconds = 0;        // meshing time (grid generation or OpenFOAM tools)
+  double h = 0;              // (V / N)^(1/3), m
+  std::string report;        // the text of quality.txt
+};
+
+// Builds `family` grids (1 = just the case's grid; grid g is coarsened by
+// ratio^(g-1)) and writes them to the output directory (grid<g>/ subfolders
+// when family > 1) with quality.txt and, if asked, mesh.vtu. Returns their
+// summaries; writes family.txt for a family.
+std::vector<GridSummary> RunMeshCase(const MeshCase& mesh_case, int family,
+                                     const std::filesystem::path& output_override = {});
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,71 @@
+// The snappyHexMesh path for hulls the structured generator cannot grid
+// (bulbous bows, transoms, appendages): writes an OpenFOAM case for the
+// double-body domain below z = 0 (blockMesh background box with its top on
+// the calm waterline, so the hull is cut there; snappyHexMesh refinement on
+// the hull, refinement boxes for the Kelvin wake, prism layers sized from a
+// target y+), runs Debian's OpenFOAM tools serially, and reads the polyMesh.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "cfd/geometry/triangle_surface.h"
+#include "cfd/mesh/mesh.h"
+
+namespace kelvin::cfd {
+
+struct SnappyOptions {
+  // Domain extent in hull lengths L, as for the structured grid.
+  double upstream = 1.0;
+  double downstream = 2.0;
+  double half_width = 1.0;
+  double depth = 1.0;
+  // Background blockMesh cells per hull length (cubes as far as the domain
+  // allows).
+  int base_cells_per_length = 10;
+  // snappyHexMesh refinement level on the hull surface (cell size halves
+  // per level) and in the Kelvin wake box; a near-hull box gets the level
+  // between them.
+  int hull_level = 3;
+  int wake_level = 1;
+  // Prism layers on the hull: count, expansion ratio, first layer from y+.
+  // layers = -1 (auto): enough layers for the outermost to reach half the
+  // hull surface cell size, so that snappyHexMesh can fit them.
+  static constexpr int kAutoLayers = -1;
+  int layers = kAutoLayers;
+  double expansion_ratio = 1.2;
+  double y_plus = 60.0;
+  double reynolds = 5e6;
+  // Surface features sharper than this angle (degrees) are snapped to.
+  double feature_angle = 30.0;
+  // OpenFOAM environment script.
+  std::string openfoam_bashrc = "/usr/share/openfoam/etc/bashrc";
+  // Throws ConfigError naming the option, the value and the valid range.
+  void Validate() const;
+};
+
+// Timings and logs of a snappy run.
+struct SnappyRun {
+  double seconds_block_mesh = 0;
+  double seconds_features = 0;
+  double seconds_snappy = 0;
+  double first_layer_thickness = 0;  // m
+  int layers = 0;                    // requested prism layers
+};
+
+// The number of layers WriteSnappyCase requests for `options` and a hull of
+// length `length`.
+int SnappyLayerCount(const SnappyOptions& options, double length);
+
+// Writes the case into `case_dir` (created; an existing polyMesh there is
+// replaced): constant/triSurface/hull.stl and the system dictionaries. The
+// hull is in ship axes (x forward from the aft end, z up from the waterline).
+void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& options, const std::filesystem::path& case_dir);
+
+// Writes the case, runs blockMesh, surfaceFeatureExtract and snappyHexMesh
+// (logs in case_dir/log.*) and reads the polyMesh. Throws DataFileError
+// naming the tool, its log and the log's last lines when a tool fails.
+Mesh RunSnappy(const TriangleSurface& hull, const SnappyOptions& options, const std::filesystem::path& case_dir,
+               SnappyRun* run = nullptr);
+
+}  // namespace kelvin::cfd
