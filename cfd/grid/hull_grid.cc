@@ -20,8 +20,8 @@ namespace {
 // lines approach each other by at most kLipschitz of their spacing.
 constexpr double kRelaxFraction = 0.4;
 constexpr double kLipschitz = 0.5;
-// The relaxation length is at least kOffsetDecay times the local beam, so
-// the line start 1 - f R'(0) stays above 1/2.
+// The relaxation length is at least kOffsetDecay times the largest beam, so
+// the lines' horizontal speed 1 - f R'(d) >= 1 - 1/(2e) stays positive.
 constexpr double kOffsetDecay = 2.0;
 // Largest change of a line's far-field depth per unit x.
 constexpr double kXSlope = 0.15;
@@ -189,8 +189,11 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     relax = std::max({relax, kOffsetDecay * beam, kRelaxFraction * st.draft});
   }
   const double lip = kLipschitz / relax;
-  const double fade0 = 1.0 / (relax * (1.0 - std::exp(-W / relax)));  // R'(0)
-  auto fade = [&](double d) { return (1.0 - std::exp(-d / relax)) * fade0 * relax; };
+  // The offset f fades as f (1 - R(d)) with R(d) = 1 - (1 + d/l) exp(-d/l)
+  // normalised to R(W) = 1: R'(0) = 0, so a line's first step from the wall
+  // is unchanged, and R' <= 1 / (e l) keeps the lines moving outwards.
+  const double fade_norm = 1.0 - (1.0 + W / relax) * std::exp(-W / relax);
+  auto fade = [&](double d) { return (1.0 - (1.0 + d / relax) * std::exp(-d / relax)) / fade_norm; };
   for (int k = 0; k <= nx; ++k) {
     const double xk = x[k];
     const std::vector<double>& z = stations[k].z;
@@ -210,15 +213,12 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
                                             "method 'snappy'",
                                             hull.name(), xk, z[j], std::abs(tau[j]), kMaxSectionSlope));
           }
-          // The fading offset slows the line's horizontal start to
-          // 1 - f R'(0); scale the tilt to keep the start normal. Lines then
-          // leave at kTiltFraction of that tilt: fully normal lines shear the
-          // cells where the tilt fades in x and along the girth.
-          tau[j] *= kTiltFraction * (1.0 - fs[j] * fade0);
+          // Lines leave at kTiltFraction of the normal's tilt: fully normal
+          // lines shear the cells where the tilt fades in x and along the girth.
+          tau[j] *= kTiltFraction;
         }
       }
-      // Lipschitz envelopes; their mean is Lipschitz too. Clamp so lines
-      // can neither rise through z = 0 nor sink through the bottom.
+      // Lipschitz envelopes; their mean is Lipschitz too.
       std::vector<double> ts(nj + 1);
       for (int j = 0; j <= nj; ++j) {
         double hi = -1e300, lo = 1e300;
@@ -226,7 +226,10 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
           hi = std::max(hi, tau[m] - lip * std::abs(z[j] - z[m]));
           lo = std::min(lo, tau[m] + lip * std::abs(z[j] - z[m]));
         }
-        ts[j] = std::clamp(0.5 * (hi + lo), -lip * (-z[j]), lip * (z[j] + D));
+        // |tilt| <= lip * (distance to z = 0 and to the bottom): the lines
+        // j = 0 and j = nj stay on those planes and no line crosses them.
+        const double bound = lip * std::min(-z[j], z[j] + D);
+        ts[j] = std::clamp(0.5 * (hi + lo), -bound, bound);
       }
       stations[k].tilt[side] = std::move(ts);
     }

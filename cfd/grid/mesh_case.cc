@@ -68,10 +68,12 @@ void ParseSnappy(const ConfigNode& s, SnappyOptions& o) {
   o.wake_level = Integer(s, "wake_level", o.wake_level, 0, 8);
   if (o.wake_level > o.hull_level) s["wake_level"].Fail(fmt::format("at most hull_level = {}", o.hull_level));
   if (auto layers = s.Find("layers")) {
-    if (layers->IsScalar() && layers->ScalarText() == "auto") {
+    if (layers->IsScalar() && layers->yaml().Scalar() == "auto") {
       o.layers = SnappyOptions::kAutoLayers;
     } else {
-      o.layers = Integer(s, "layers", o.layers, 0, 50);
+      const int n = layers->As<int>();
+      if (n < 0 || n > 50) layers->Fail("'auto' or an integer in [0, 50]");
+      o.layers = n;
     }
   }
   if (auto er = s.Find("expansion_ratio")) {
@@ -136,6 +138,7 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source, 
       flow.Fail("either 'reynolds' or 'speed' (with 'viscosity' or the ship file's nu), not both");
     }
     c.reynolds = flow.GetPositive("reynolds");
+    if (c.reynolds < 1e3) flow["reynolds"].Fail("a Reynolds number >= 1000");
   } else if (flow.Has("speed")) {
     const double speed = flow.GetPositive("speed");
     double nu = ship_nu;

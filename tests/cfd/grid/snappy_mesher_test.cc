@@ -1,0 +1,119 @@
+// The snappyHexMesh path: the dictionaries for the double-body domain, a
+// CI-sized DTC grid from Debian's OpenFOAM with its quality report, and the
+// errors when OpenFOAM is missing. KELVIN_SNAPPY_FULL=1 runs the benchmark
+// grid of data/cases/mesh/dtc_snappy.yaml instead (ctest label slow).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "cfd/geometry/hydrostatics.h"
+#include "cfd/grid/hull_grid.h"
+#include "cfd/grid/mesh_case.h"
+#include "cfd/grid/snappy_mesher.h"
+#include "cfd/grid/spacing.h"
+#include "data/schema/errors.h"
+#include "tests/test_utilities/test_utilities.h"
+
+namespace kelvin::cfd {
+namespace {
+
+using kelvin::testing::ScopedTempDir;
+using kelvin::testing::SourceDir;
+using ::testing::HasSubstr;
+
+std::string Slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(SnappyMesherTest, DictionariesDescribeTheDoubleBodyDomain) {
+  ScopedTempDir dir;
+  const TriangleSurface hull = WigleySurface(2.0, 0.2, 0.125, 0.05, 40, 10);
+  SnappyOptions o;
+  o.reynolds = 4e6;
+  o.y_plus = 30;
+  o.layers = 5;
+  WriteSnappyCase(hull, o, dir.path());
+  const std::string block = Slurp(dir / "system/blockMeshDict");
+  // Domain: 1 L ahead, 2 L behind, +-1 L wide, 1 L deep, top on z = 0.
+  EXPECT_THAT(block, HasSubstr("(-4 -2 -2)"));
+  EXPECT_THAT(block, HasSubstr("(4 2 0)"));
+  for (const char* patch : {"freeSurface", "inlet", "outlet", "side", "bottom"}) EXPECT_THAT(block, HasSubstr(patch));
+  const std::string snappy = Slurp(dir / "system/snappyHexMeshDict");
+  EXPECT_THAT(snappy, HasSubstr(fmt::format("firstLayerThickness {:.6g};", FirstCellHeight(30, 4e6, 2.0))));
+  EXPECT_THAT(snappy, HasSubstr("nSurfaceLayers 5;"));
+  EXPECT_THAT(snappy, HasSubstr("kelvinWake"));
+  EXPECT_THAT(snappy, HasSubstr("relativeSizes false;"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "constant/triSurface/hull.stl"));
+  // Auto layers reach half the hull cell size: L / 10 / 2^3 / 2 = 12.5 mm
+  // from the first layer at expansion 1.2.
+  o.layers = SnappyOptions::kAutoLayers;
+  const int n = SnappyLayerCount(o, 2.0);
+  const double first = FirstCellHeight(30, 4e6, 2.0);
+  EXPECT_GE(first * std::pow(1.2, n - 1), 0.0125);
+  EXPECT_LT(first * std::pow(1.2, n - 2), 0.0125);
+}
+
+TEST(SnappyMesherTest, MissingOpenFoamIsOneClearError) {
+  ScopedTempDir dir;
+  SnappyOptions o;
+  o.openfoam_bashrc = "/nonexistent/openfoam/bashrc";
+  const TriangleSurface hull = WigleySurface(2.0, 0.2, 0.125, 0.05, 20, 6);
+  try {
+    RunSnappy(hull, o, dir.path());
+    FAIL() << "no error";
+  } catch (const DataFileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/openfoam/bashrc: OpenFOAM environment not found"));
+  }
+}
+
+TEST(SnappyMesherTest, DtcGridQualityReport) {
+  if (!std::filesystem::exists("/usr/share/openfoam/etc/bashrc")) GTEST_SKIP() << "Debian openfoam not installed";
+  const bool full = std::getenv("KELVIN_SNAPPY_FULL") != nullptr;
+  MeshCase c = LoadMeshCase(SourceDir() / "data/cases/mesh/dtc_snappy.yaml");
+  if (!full) {
+    // CI size: coarser background and one level less on the hull.
+    c.snappy.base_cells_per_length = 8;
+    c.snappy.hull_level = 3;
+    c.snappy.wake_level = 1;
+  }
+  c.write_vtu = false;
+  ScopedTempDir dir;
+  const auto grids = RunMeshCase(c, 1, dir.path());
+  ASSERT_EQ(grids.size(), 1u);
+  const GridSummary& g = grids[0];
+  fmt::print("{}", g.report);
+  EXPECT_GT(g.quality.min_volume, 0.0);
+  // snappyHexMesh's own limit (meshQualityControls maxNonOrtho 65).
+  EXPECT_LT(g.quality.max_non_orthogonality, 65.0);
+  EXPECT_LT(g.quality.boundary_openness, 1e-10);
+  // Snapping puts the hull patch points on the STL surface; the faces
+  // between them cut the chords of curved parts and round the features, so
+  // on average the patch lies within a small fraction of a hull cell of the
+  // surface. An unsnapped (castellated) hull would sit about a quarter of a
+  // cell off. Mean offset = |V_grid - V_stl| / S_wet, required below 5% of
+  // the hull surface cell size L / base / 2^level.
+  const HullPlacement placement = LoadHullPlacement(c.ship_file);
+  const TriangleSurface hull = LoadHull(placement);
+  const double stl = UnderwaterVolume(hull);
+  const Hydrostatics hs = ComputeHydrostatics(hull, placement.Lpp, placement.B, placement.T);
+  const double cell = placement.Lpp / c.snappy.base_cells_per_length / std::pow(2.0, c.snappy.hull_level);
+  const double offset = std::abs(g.hull_volume - stl) / hs.wetted_area;
+  fmt::print("hull patch volume / STL volume = {:.5f}; mean offset {:.3g} mm = {:.3g} of the {:.3g} mm hull cells\n",
+             g.hull_volume / stl, 1e3 * offset, offset / cell, 1e3 * cell);
+  EXPECT_LT(offset, 0.05 * cell);
+  // The report carries the figures the issue asks for.
+  EXPECT_THAT(g.report, HasSubstr("non-orthogonality max"));
+  EXPECT_THAT(g.report, HasSubstr("skewness max"));
+  EXPECT_THAT(g.report, HasSubstr("y+ estimate"));
+  EXPECT_GT(g.y_plus.min, 0.0);
+}
+
+}  // namespace
+}  // namespace kelvin::cfd
