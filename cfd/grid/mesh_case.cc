@@ -248,6 +248,7 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family, const fs::pa
       SnappyRun run;
       mesh = std::make_unique<Mesh>(RunSnappy(surface, o, s.directory, &run));
       s.seconds = run.seconds_block_mesh + run.seconds_features + run.seconds_snappy;
+      s.snappy = run;
       length = LoadHullPlacement(c.ship_file).Lpp;
       extra += fmt::format("blockMesh {:.2f} s, surfaceFeatureExtract {:.2f} s, snappyHexMesh {:.2f} s\n"
                            "first layer {:.4g} m (y+ {:.3g}), {} layers requested, expansion {:.3g}\n",

@@ -66,6 +66,7 @@ struct GridSummary {
   double hull_volume = 0;    // m^3, enclosed by the hull patch and z = 0
   YPlusEstimate y_plus;
   double seconds = 0;        // meshing time (grid generation or OpenFOAM tools)
+  SnappyRun snappy;          // per-tool times of the snappy path
   double h = 0;              // (V / N)^(1/3), m
   std::string report;        // the text of quality.txt
 };
