@@ -28,6 +28,7 @@ void WriteDerivativeH5(const IdentificationReport& report, const std::filesystem
 // The joint-fit value a classical PMM derivative corresponds to (see
 // pmm_analysis.h): e.g. "Y_r" -> Y_r - m'_x, "N_rdot" -> -J'_z. False for
 // names without a counterpart.
-bool ClassicalCounterpart(const std::string& name, const sim::HullCoefficients<double>& c, double* value);
+bool ClassicalCounterpart(const std::string& name, const sim::HullCoefficients<double>& c,
+                          double* value);
 
 }  // namespace kelvin::ident

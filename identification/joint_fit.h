@@ -88,7 +88,8 @@ struct JointFitResult {
   std::array<double, kCoefficientCount> std_error{};  // NaN unless kIdentified
   std::array<CoefficientStatus, kCoefficientCount> status{};
   std::array<std::string, kCoefficientCount> note;  // why a coefficient was flagged
-  Eigen::Matrix<double, kCoefficientCount, kCoefficientCount> covariance;  // zero rows for held coefficients
+  Eigen::Matrix<double, kCoefficientCount, kCoefficientCount>
+      covariance;  // zero rows for held coefficients
   Eigen::Matrix<double, kCoefficientCount, kCoefficientCount> correlation;
   struct CorrelatedPair {
     int a = 0, b = 0;
@@ -115,7 +116,8 @@ int CoefficientIndex(std::string_view name);
 
 // Modelled nondimensional hydrodynamic forces of a run at every sample (for
 // plots and residual checks), with the given coefficients.
-std::array<std::vector<double>, 3> ModelForcesPrime(const CaptiveShip& ship, const CaptiveRun& run,
-                                                    const sim::HullCoefficients<double>& coefficients);
+std::array<std::vector<double>, 3> ModelForcesPrime(
+    const CaptiveShip& ship, const CaptiveRun& run,
+    const sim::HullCoefficients<double>& coefficients);
 
 }  // namespace kelvin::ident

@@ -17,17 +17,21 @@ namespace kelvin::ident {
 namespace {
 
 constexpr const auto& kNames = sim::HullCoefficients<double>::kNames;
-constexpr int kR0 = 0, kXvr = 2, kYv = 5, kYr = 6, kYvvr = 8, kYvrr = 9, kNv = 11, kNr = 12, kNvvr = 14,
-              kNvrr = 15, kMx = 17, kMy = 18, kJz = 19;
+constexpr int kR0 = 0, kXvr = 2, kYv = 5, kYr = 6, kYvvr = 8, kYvrr = 9, kNv = 11, kNr = 12,
+              kNvvr = 14, kNvrr = 15, kMx = 17, kMy = 18, kJz = 19;
 
-sim::ShipParameters Kvlcc2() { return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml"); }
+sim::ShipParameters Kvlcc2() {
+  return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
+}
 
 bool IsAddedMass(int i) { return i >= kMx; }
 
-CaptiveCampaign StandardCampaign(const sim::ShipParameters& ship, bool combined, bool inertia = true) {
+CaptiveCampaign StandardCampaign(const sim::ShipParameters& ship, bool combined,
+                                 bool inertia = true) {
   VirtualCaptiveOptions o;
   o.include_rigid_body_inertia = inertia;
-  return GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, combined), o);
+  return GenerateCampaign(sim::MmgModel<double>(ship),
+                          StandardDesign(ship.approach_speed, combined), o);
 }
 
 // Acceptance 1: the full campaign (static drift at 0..20 deg, pure sway and
@@ -58,7 +62,8 @@ TEST(JointFitTest, RigidBodyInertiaIsRemovedWhenIncluded) {
   const JointFitResult with = FitCampaign(StandardCampaign(ship, true, true), {}, "with");
   const JointFitResult without = FitCampaign(StandardCampaign(ship, true, false), {}, "without");
   for (int i = 0; i < kCoefficientCount; ++i) {
-    EXPECT_NEAR(with.coefficients[i], without.coefficients[i], 1e-9 * (1.0 + std::abs(ship.hull[i])))
+    EXPECT_NEAR(with.coefficients[i], without.coefficients[i],
+                1e-9 * (1.0 + std::abs(ship.hull[i])))
         << kNames[i];
   }
 }
@@ -87,7 +92,8 @@ TEST(JointFitTest, NoiseStandardErrorsMatchEmpiricalSpreadOverTwentySeeds) {
       const double z = std::abs(fit.coefficients[i] - ship.hull[i]) / se;
       if (z > 3) {
         ++outside3;
-        std::printf("seed %d: %s is %.2f standard errors from the truth\n", seed, std::string(kNames[i]).c_str(), z);
+        std::printf("seed %d: %s is %.2f standard errors from the truth\n", seed,
+                    std::string(kNames[i]).c_str(), z);
       }
       if (z > 4) ++outside4;
     }
@@ -103,7 +109,8 @@ TEST(JointFitTest, NoiseStandardErrorsMatchEmpiricalSpreadOverTwentySeeds) {
     for (double v : estimate[i]) var += (v - mean) * (v - mean) / (kSeeds - 1);
     for (double v : std_error[i]) mean_se += v / kSeeds;
     const double ratio = mean_se / std::sqrt(var);
-    std::printf("%-10s reported/empirical standard error %.2f\n", std::string(kNames[i]).c_str(), ratio);
+    std::printf("%-10s reported/empirical standard error %.2f\n", std::string(kNames[i]).c_str(),
+                ratio);
     EXPECT_GT(ratio, 0.5) << kNames[i];
     EXPECT_LT(ratio, 2.0) << kNames[i];
   }
@@ -122,7 +129,8 @@ TEST(JointFitTest, CrossTermsFlaggedWithoutCombinedTests) {
     EXPECT_EQ(fit.coefficients[i], 0.0);
     EXPECT_TRUE(std::isnan(fit.std_error[i]));
     bool warned = false;
-    for (const std::string& w : fit.warnings) warned = warned || w.find(std::string(kNames[i]) + " is not") == 0;
+    for (const std::string& w : fit.warnings)
+      warned = warned || w.find(std::string(kNames[i]) + " is not") == 0;
     EXPECT_TRUE(warned);
   }
   // The linear derivatives and added masses stay identified and accurate.
@@ -144,7 +152,8 @@ TEST(JointFitTest, CrossTermsWithoutNoiseAreFlaggedOrExact) {
   EXPECT_EQ(fit.status[kNvvr], CoefficientStatus::kNotIdentifiable);
   for (int i : {kXvr, kYvvr, kYvrr, kNvvr, kNvrr}) {
     if (!fit.Identified(i)) continue;
-    EXPECT_LT(std::abs(fit.coefficients[i] - ship.hull[i]), 0.005 * std::abs(ship.hull[i])) << kNames[i];
+    EXPECT_LT(std::abs(fit.coefficients[i] - ship.hull[i]), 0.005 * std::abs(ship.hull[i]))
+        << kNames[i];
   }
 }
 
@@ -156,7 +165,8 @@ TEST(JointFitTest, CircularMotionRunsIdentifyCrossTerms) {
   for (double beta : {-0.2, -0.1, 0.0, 0.1, 0.2}) {
     for (double r : {0.2, 0.4, 0.6}) d.circular.push_back({beta, r});
   }
-  const JointFitResult fit = FitCampaign(GenerateCampaign(sim::MmgModel<double>(ship), d, {}), {}, "arm");
+  const JointFitResult fit =
+      FitCampaign(GenerateCampaign(sim::MmgModel<double>(ship), d, {}), {}, "arm");
   for (int i : {kXvr, kYvvr, kYvrr, kNvvr, kNvrr}) {
     SCOPED_TRACE(std::string(kNames[i]));
     EXPECT_TRUE(fit.Identified(i)) << fit.note[i];
@@ -169,7 +179,8 @@ TEST(JointFitTest, CorrelationWarningForYrAndAddedMassX) {
   // acceleration of the PMM yaw law separates them.
   const JointFitResult fit = FitCampaign(StandardCampaign(Kvlcc2(), true), {}, "full");
   bool found = false;
-  for (const auto& p : fit.correlated) found = found || (p.a == kYr && p.b == kMx && std::abs(p.correlation) > 0.95);
+  for (const auto& p : fit.correlated)
+    found = found || (p.a == kYr && p.b == kMx && std::abs(p.correlation) > 0.95);
   EXPECT_TRUE(found);
 }
 
@@ -227,7 +238,8 @@ TEST(JointFitTest, RobustLossResistsSpikes) {
     worst_plain = std::max(worst_plain, std::abs(a.coefficients[i] / ship.hull[i] - 1));
     worst_robust = std::max(worst_robust, std::abs(b.coefficients[i] / ship.hull[i] - 1));
   }
-  std::printf("worst relative error of the linear terms: plain %.4f, Cauchy %.4f\n", worst_plain, worst_robust);
+  std::printf("worst relative error of the linear terms: plain %.4f, Cauchy %.4f\n", worst_plain,
+              worst_robust);
   EXPECT_LT(worst_robust, 0.02);
   EXPECT_GT(worst_plain, 2 * worst_robust);
 }
@@ -240,7 +252,8 @@ TEST(JointFitTest, BadOptionsNameTheOption) {
     FitCampaign(c, o, "x");
     FAIL() << "expected ArgumentError";
   } catch (const ArgumentError& e) {
-    EXPECT_NE(std::string(e.what()).find("unknown coefficient 'Y_vv'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unknown coefficient 'Y_vv'"), std::string::npos)
+        << e.what();
   }
   o.priors.clear();
   o.priors["Y_v"] = {-0.3, 0.0};

@@ -35,7 +35,9 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-double Seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+double Seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
 
 }  // namespace
 
@@ -44,9 +46,12 @@ int main(int argc, char** argv) {
   std::string write_to, campaign_out;
   std::string ship_file = "data/ships/kvlcc2.yaml";
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--write") && i + 1 < argc) write_to = argv[++i];
-    else if (!std::strcmp(argv[i], "--ship") && i + 1 < argc) ship_file = argv[++i];
-    else if (!std::strcmp(argv[i], "--write-campaign") && i + 1 < argc) campaign_out = argv[++i];
+    if (!std::strcmp(argv[i], "--write") && i + 1 < argc)
+      write_to = argv[++i];
+    else if (!std::strcmp(argv[i], "--ship") && i + 1 < argc)
+      ship_file = argv[++i];
+    else if (!std::strcmp(argv[i], "--write-campaign") && i + 1 < argc)
+      campaign_out = argv[++i];
   }
   const kelvin::sim::ShipParameters ship = kelvin::sim::LoadShip(ship_file);
   const kelvin::sim::MmgModel<double> model(ship);
@@ -99,14 +104,20 @@ int main(int argc, char** argv) {
   for (int i = 0; i < kCoefficientCount; ++i) identified += fit.Identified(i) ? 1 : 0;
 
   std::string md = "## Identification (joint Ceres fit of the MMG hull coefficients)\n\n";
-  md += "Produced by `build/release/tools/bench/identification_bench --write BENCHMARKS.md` (one run, one core).\n\n";
+  md +=
+      "Produced by `build/release/tools/bench/identification_bench --write BENCHMARKS.md` (one "
+      "run, one core).\n\n";
   md += "| measure | value | target |\n| --- | --- | --- |\n";
   md += fmt::format(
-      "| full joint fit, KVLCC2, 10 runs x 5 periods x 200 samples ({} residuals, 5% noise; two weighting passes, "
-      "covariance, identifiability): wall time (median of {}) | {:.3f} s ({} of 20 coefficients identified) | < 2 s |\n",
+      "| full joint fit, KVLCC2, 10 runs x 5 periods x 200 samples ({} residuals, 5% noise; two "
+      "weighting passes, "
+      "covariance, identifiability): wall time (median of {}) | {:.3f} s ({} of 20 coefficients "
+      "identified) | < 2 s |\n",
       fit.residuals, kRepeats, t_fit, identified);
-  md += fmt::format("| peer: one dense least-squares solve of the same size (Eigen HouseholderQR, {} x {}) | {:.4f} s | - |\n",
-                    rows, cols, t_peer);
+  md += fmt::format(
+      "| peer: one dense least-squares solve of the same size (Eigen HouseholderQR, {} x {}) | "
+      "{:.4f} s | - |\n",
+      rows, cols, t_peer);
   md += fmt::format("| joint fit / dense QR solve | {:.1f} | - |\n\n", t_fit / t_peer);
   fmt::print("{}", md);
   fmt::print("(peer checksum {:.3g})\n", checksum);
