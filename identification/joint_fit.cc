@@ -124,6 +124,8 @@ std::string_view CoefficientStatusName(CoefficientStatus status) {
       return "not identifiable";
     case CoefficientStatus::kFixed:
       return "fixed";
+    case CoefficientStatus::kAtBound:
+      return "at bound";
   }
   return "?";
 }
@@ -162,6 +164,14 @@ void JointFitOptions::Validate() const {
   positive("min_noise_fraction", min_noise_fraction);
   positive("max_relative_std_error", max_relative_std_error);
   positive("null_space_tolerance", null_space_tolerance);
+  for (const auto& [name, b] : bounds) {
+    check_name("bounds", name);
+    if (!(b.lower < b.upper) || std::isnan(b.lower) || std::isnan(b.upper)) {
+      throw ArgumentError(
+          fmt::format("joint fit option 'bounds.{}': [{}, {}]: expected lower < upper", name,
+                      b.lower, b.upper));
+    }
+  }
   if (!(correlation_limit > 0 && correlation_limit < 1)) {
     throw ArgumentError(
         fmt::format("joint fit option 'correlation_limit' = {}: expected a number in (0, 1)",
@@ -319,6 +329,13 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     } else if (!held_indices.empty()) {
       problem.SetManifold(phi.data(), new ceres::SubsetManifold(kP, held_indices));
     }
+    for (const auto& [name, b] : options.bounds) {
+      const int i = CoefficientIndex(name);
+      if (held[i]) continue;
+      phi[i] = std::clamp(theta[i], b.lower, b.upper) / scale[i];  // start inside the box
+      if (std::isfinite(b.lower)) problem.SetParameterLowerBound(phi.data(), i, b.lower / scale[i]);
+      if (std::isfinite(b.upper)) problem.SetParameterUpperBound(phi.data(), i, b.upper / scale[i]);
+    }
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     so.max_num_iterations = options.max_iterations;
@@ -413,6 +430,25 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     for (std::size_t r = 0; r < runs.size(); ++r) {
       for (int c = 0; c < 3; ++c) result.runs[r].sigma[c] = sigma[r][c];
     }
+
+    // Coefficients that ended on a bound: hold them there and refit.
+    bool any_bound = false;
+    for (const auto& [name, b] : options.bounds) {
+      const int i = CoefficientIndex(name);
+      if (held[i]) continue;
+      for (const double edge : {b.lower, b.upper}) {
+        if (std::isfinite(edge) &&
+            std::abs(theta[i] - edge) <= 1e-9 * std::max(1.0, std::abs(edge))) {
+          held[i] = true;
+          any_bound = true;
+          theta[i] = edge;
+          result.status[i] = CoefficientStatus::kAtBound;
+          result.note[i] = fmt::format("ended on its bound {}; held there", edge);
+          result.warnings.push_back(fmt::format("{} {}", kNames[i], result.note[i]));
+        }
+      }
+    }
+    if (any_bound) continue;
 
     // Null space of the normalized whitened normal matrix.
     Eigen::MatrixXd jac;

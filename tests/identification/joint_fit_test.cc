@@ -211,6 +211,32 @@ TEST(JointFitTest, FixedCoefficientIsHeld) {
   EXPECT_NEAR(fit.coefficients[kYr] - fit.coefficients[kMx], ship.hull.Y_r - ship.hull.m_x, 1e-3);
 }
 
+TEST(JointFitTest, CoefficientOnItsBoundIsHeldThere) {
+  const sim::ShipParameters ship = Kvlcc2();
+  JointFitOptions o;
+  o.bounds["Y_v"] = {-1.0, -0.32};  // the truth, -0.315, lies outside
+  const JointFitResult fit = FitCampaign(StandardCampaign(ship, true), o, "bounded");
+  EXPECT_EQ(fit.status[kYv], CoefficientStatus::kAtBound);
+  EXPECT_EQ(fit.coefficients[kYv], -0.32);
+  EXPECT_TRUE(std::isnan(fit.std_error[kYv]));
+  EXPECT_TRUE(fit.Identified(kNv));
+  bool warned = false;
+  for (const std::string& w : fit.warnings)
+    warned = warned || w == "Y_v ended on its bound -0.32; held there";
+  EXPECT_TRUE(warned);
+  // An empty interval is an option error naming the coefficient.
+  JointFitOptions bad;
+  bad.bounds["m_y_prime"] = {0.3, 0.2};
+  try {
+    FitCampaign(StandardCampaign(ship, true), bad, "x");
+    FAIL();
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("'bounds.m_y_prime': [0.3, 0.2]: expected lower < upper"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(JointFitTest, RobustLossResistsSpikes) {
   const sim::ShipParameters ship = Kvlcc2();
   CaptiveCampaign c = StandardCampaign(ship, true);
