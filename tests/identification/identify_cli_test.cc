@@ -104,6 +104,14 @@ TEST(IdentifyCliTest, BadArgumentsExitTwo) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--prior 'Y_vvr=0.3': expected NAME=MEAN:SIGMA"), std::string::npos)
       << r.output;
+  r = testing::RunCommand(base + " --bound Y_v=-0.2:-0.4");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("'bounds.Y_v': [-0.2, -0.4]: expected lower < upper"), std::string::npos)
+      << r.output;
+  r = testing::RunCommand(base + " --bound Y_v=-0.2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--bound 'Y_v=-0.2': expected NAME=LOWER:UPPER"), std::string::npos)
+      << r.output;
   r = testing::RunCommand(base + " --fix m_x_prime=abc");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--fix m_x_prime: 'abc' is not a number"), std::string::npos) << r.output;

@@ -32,6 +32,7 @@ struct IdentifyArgs {
   double max_relative_std_error = 0.25;
   std::vector<std::string> priors;
   std::vector<std::string> fixed;
+  std::vector<std::string> bounds;
   bool keep_unidentifiable = false;
 };
 
@@ -87,6 +88,17 @@ void RunIdentify(const IdentifyArgs& a) {
   for (const std::string& f : a.fixed) {
     const auto [name, value] = SplitAssignment("--fix", f, "NAME=VALUE (e.g. m_x_prime=0.022)");
     options.fixed[name] = ParseDouble("--fix " + name, value);
+  }
+  for (const std::string& b : a.bounds) {
+    const auto [name, rest] =
+        SplitAssignment("--bound", b, "NAME=LOWER:UPPER (e.g. m_x_prime=0:0.1)");
+    const auto colon = rest.find(':');
+    if (colon == std::string::npos) {
+      throw ArgumentError(
+          fmt::format("--bound '{}': expected NAME=LOWER:UPPER (e.g. m_x_prime=0:0.1)", b));
+    }
+    options.bounds[name] = {ParseDouble("--bound " + name, rest.substr(0, colon)),
+                            ParseDouble("--bound " + name, rest.substr(colon + 1))};
   }
   // Option errors are argument errors: check before reading any data.
   options.Validate();
@@ -170,6 +182,9 @@ Command AddIdentifyCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--prior", args->priors, "Gaussian prior NAME=MEAN:SIGMA (repeatable)");
   cmd->add_option("--fix", args->fixed, "Hold a coefficient NAME=VALUE (repeatable)");
+  cmd->add_option(
+      "--bound", args->bounds,
+      "Bounds NAME=LOWER:UPPER (repeatable; 'inf' allowed; added masses default to >= 0)");
   cmd->add_flag("--keep-unidentifiable", args->keep_unidentifiable,
                 "Report flagged coefficients at their fitted values instead of dropping them");
   return {cmd, [args] { RunIdentify(*args); }};
