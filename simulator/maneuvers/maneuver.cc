@@ -145,6 +145,8 @@ void ManeuverController::Start(Simulator& sim) {
   psi0_ = sim.state()[kPsi];
   phase_ = ManeuverPhase::kExecute;
   execute_times_ = {t0_};
+  // Room for every execute, so that StepManeuver never allocates (real time).
+  execute_times_.reserve(8 + spec_.spiral_rudders.size());
   time_limit_ += t0_;
   next_time_event_ = kInf;
   switch (spec_.kind) {

@@ -22,7 +22,10 @@ if(LCM_FOUND AND NOT TARGET LCM::lcm)
 endif()
 
 # lcm_generate_cpp(<target> <out_dir> <lcm files...>): C++ headers from .lcm
-# definitions, regenerated when a definition changes.
+# definitions, regenerated when a definition changes. --cpp-std=c++11 makes
+# the message constants constexpr (usable at namespace scope and in switch).
+# The generated code uses C-style casts: include <out_dir> as a SYSTEM
+# directory in targets built with the project warnings.
 function(lcm_generate_cpp target out_dir)
   set(headers)
   foreach(def ${ARGN})
@@ -32,7 +35,7 @@ function(lcm_generate_cpp target out_dir)
     get_filename_component(stem ${def} NAME_WE)
     set(hdr ${out_dir}/${pkg}/${stem}.hpp)
     add_custom_command(OUTPUT ${hdr}
-      COMMAND ${LCM_GEN_EXECUTABLE} --cpp --cpp-hpath ${out_dir} ${abs}
+      COMMAND ${LCM_GEN_EXECUTABLE} --cpp --cpp-std=c++11 --cpp-hpath ${out_dir} ${abs}
       DEPENDS ${abs}
       COMMENT "lcm-gen ${stem}.lcm"
       VERBATIM)

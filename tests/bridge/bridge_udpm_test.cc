@@ -1,0 +1,197 @@
+// Inter-process test over udpm:// on loopback with TTL 0: `kelvin bridge`
+// runs as a child process; this test process (the project's Listener) and
+// Debian's lcm-logger (a third process, its log decoded back) must receive
+// every state and event message, in order. Skips with a clear message when
+// the machine has no multicast route (add one with
+// `ip route add 224.0.0.0/4 dev lo`).
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <lcm/lcm-cpp.hpp>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bridge/listener.h"
+#include "simulator/maneuvers/runner.h"
+#include "simulator/mmg/ship_parameters.h"
+#include "tests/test_utilities/test_utilities.h"
+
+extern char** environ;
+
+namespace kelvin::bridge {
+namespace {
+
+constexpr const char* kGroup = "239.255.76.67";
+
+// A child process started with posix_spawn; killed (SIGKILL) if still running
+// when destroyed, so no test leaves a process behind.
+class Child {
+ public:
+  explicit Child(const std::vector<std::string>& argv) {
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    if (posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), environ) != 0) pid_ = -1;
+  }
+  ~Child() {
+    if (pid_ > 0 && !exited_) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  bool started() const { return pid_ > 0; }
+  // Exit code if the child has exited, -1 while it runs.
+  bool Poll(int* exit_code) {
+    if (exited_) {
+      *exit_code = code_;
+      return true;
+    }
+    int status = 0;
+    if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+      exited_ = true;
+      code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      *exit_code = code_;
+      return true;
+    }
+    return false;
+  }
+  int Wait() {
+    int code = -1;
+    while (!Poll(&code)) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return code;
+  }
+  void Signal(int sig) {
+    if (!exited_) ::kill(pid_, sig);
+  }
+
+ private:
+  pid_t pid_ = -1;
+  bool exited_ = false;
+  int code_ = -1;
+};
+
+// Empty when loopback multicast works; otherwise why not.
+std::string MulticastProblem() {
+  const std::string check = std::string("ip route get ") + kGroup + " >/dev/null 2>&1";
+  if (testing::RunCommand(check).exit_code == 0) return "";
+  // Root may add the route for the test (CI containers often have none).
+  testing::RunCommand("ip route add 224.0.0.0/4 dev lo");
+  if (testing::RunCommand(check).exit_code == 0) return "";
+  return "no multicast route on this machine; add one with 'ip route add 224.0.0.0/4 dev lo' (as root)";
+}
+
+std::string UniqueUrl() {
+  std::random_device rd;
+  const int port = 20000 + static_cast<int>(rd() % 20000);
+  return "udpm://" + std::string(kGroup) + ":" + std::to_string(port) + "?ttl=0";
+}
+
+TEST(BridgeUdpm, SecondProcessAndLcmLoggerReceiveEveryMessageInOrder) {
+  if (const std::string why = MulticastProblem(); !why.empty()) GTEST_SKIP() << why;
+  const std::string url = UniqueUrl();
+  lcm::LCM lcm(url);
+  if (!lcm.good()) GTEST_SKIP() << "LCM cannot open " << url << " (multicast unavailable on loopback)";
+  const bool have_logger = testing::HaveProgram("lcm-logger");
+  const testing::ScopedTempDir dir;
+  const std::string log_path = (dir / "bridge.lcm").string();
+
+  // The logger first; its log gets a probe message once it is listening.
+  std::unique_ptr<Child> logger;
+  if (have_logger) {
+    const std::string exe = testing::RunCommand("command -v lcm-logger").output;
+    logger = std::make_unique<Child>(std::vector<std::string>{
+        exe.substr(0, exe.find('\n')), "--lcm-url=" + url, "--channel=KELVIN_IPC_.*", "--flush-interval=20", "-f",
+        log_path});
+    ASSERT_TRUE(logger->started());
+    bool ready = false;
+    for (int i = 0; i < 100 && !ready; ++i) {
+      const char probe[] = "probe";
+      lcm.publish("KELVIN_IPC_PROBE", probe, sizeof(probe));
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      std::error_code ec;
+      ready = std::filesystem::file_size(log_path, ec) > 0 && !ec;
+    }
+    ASSERT_TRUE(ready) << "lcm-logger did not start logging " << url;
+  }
+
+  Listener listener(lcm, "KELVIN_IPC");
+  Child bridge({(testing::ToolsDir() / "kelvin").string(), "-q", "bridge",
+                (testing::SourceDir() / "data/ships/kvlcc2.yaml").string(), "--lcm-url", url, "--channel-prefix",
+                "KELVIN_IPC", "--script", "zigzag:20/20:stbd", "--rate", "20", "--speedup", "25"});
+  ASSERT_TRUE(bridge.started());
+  int code = -1;
+  const auto t_start = std::chrono::steady_clock::now();
+  while (!bridge.Poll(&code)) {
+    lcm.handleTimeout(20);
+    ASSERT_LT(std::chrono::steady_clock::now() - t_start, std::chrono::seconds(60)) << "bridge did not finish";
+  }
+  ASSERT_EQ(code, 0);
+  // What is still in flight.
+  for (int i = 0; i < 25; ++i) lcm.handleTimeout(20);
+
+  // The reference: the same zig-zag in fast time with the same fixed step.
+  const sim::ShipParameters ship = sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
+  const sim::MmgModel<double> model(ship);
+  sim::RunOptions ro;
+  ro.integrator.method = sim::SimulatorOptions::Method::kFixedStep;
+  ro.integrator.fixed_step = 0.025;
+  ro.output_interval = 0.05;
+  const auto ref = sim::RunManeuver(model, sim::ManeuverSpec::Parse("zigzag:20/20:stbd"), ro);
+
+  EXPECT_EQ(listener.malformed(), 0);
+  EXPECT_EQ(listener.out_of_sequence(), 0);
+  ASSERT_EQ(listener.states().size(), ref.trajectory.size());
+  for (std::size_t i = 0; i < ref.trajectory.size(); ++i) {
+    ASSERT_EQ(listener.states()[i].seq, static_cast<std::int64_t>(i));
+    ASSERT_NEAR(listener.states()[i].x, ref.trajectory[i].x, 1e-9);
+    ASSERT_NEAR(listener.states()[i].y, ref.trajectory[i].y, 1e-9);
+  }
+  ASSERT_EQ(listener.events().size(), 9u);  // START, 4 EXECUTE, 3 OVERSHOOT, STOP
+  EXPECT_EQ(listener.events().front().kind, kelvin::maneuver_event_t::START);
+  EXPECT_EQ(listener.events().back().kind, kelvin::maneuver_event_t::STOP);
+
+  if (!have_logger) GTEST_SKIP() << "lcm-logger not installed (Debian package lcm): the log half is not checked";
+  logger->Signal(SIGINT);
+  EXPECT_EQ(logger->Wait(), 0);
+  lcm::LogFile log(log_path, "r");
+  ASSERT_TRUE(log.good());
+  std::vector<kelvin::ship_state_t> states;
+  std::vector<kelvin::maneuver_event_t> events;
+  long undecodable = 0;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    if (e->channel == "KELVIN_IPC_STATE") {
+      kelvin::ship_state_t m;
+      if (m.decode(e->data, 0, e->datalen) != e->datalen) ++undecodable;
+      states.push_back(m);
+    } else if (e->channel == "KELVIN_IPC_EVENT") {
+      kelvin::maneuver_event_t m;
+      if (m.decode(e->data, 0, e->datalen) != e->datalen) ++undecodable;
+      events.push_back(m);
+    }
+  }
+  EXPECT_EQ(undecodable, 0);
+  ASSERT_EQ(states.size(), listener.states().size());
+  ASSERT_EQ(events.size(), listener.events().size());
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    ASSERT_EQ(states[i].seq, static_cast<std::int64_t>(i));
+    ASSERT_EQ(states[i].utime, listener.states()[i].utime);
+    ASSERT_EQ(states[i].x, listener.states()[i].x);
+    ASSERT_EQ(states[i].heading, listener.states()[i].heading);
+  }
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    EXPECT_EQ(events[i].seq, static_cast<std::int64_t>(i));
+    EXPECT_EQ(events[i].kind, listener.events()[i].kind);
+    EXPECT_EQ(events[i].t, listener.events()[i].t);
+  }
+}
+
+}  // namespace
+}  // namespace kelvin::bridge

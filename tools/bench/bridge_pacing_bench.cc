@@ -1,0 +1,216 @@
+// Real-time pacing of `kelvin bridge`: the bridge streams the KVLCC2 in real
+// time at 50 Hz for 60 s (memq://, helm mode), and its publish instants are
+// compared with the ideal schedule; a naive loop doing the same work (the
+// same integrator steps and the same publication) with sleep_for(T) after
+// each step runs next, on the same machine in the same run, as the peer.
+//
+//   bridge_pacing_bench [--seconds 60] [--rate 50] [--ship data/ships/kvlcc2.yaml]
+//                       [--write BENCHMARKS.md] [--check]
+//
+// --write replaces the bridge_pacing section of that file (atomically);
+// --check exits 1 unless the bridge meets the acceptance limits: mean period
+// error < 0.1 ms, p99 jitter < 2 ms, drift over the run < 2 ms.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bridge/bridge.h"
+#include "bridge/pacer.h"
+#include "data/schema/atomic_file.h"
+#include "simulator/mmg/ship_parameters.h"
+
+namespace {
+
+using kelvin::bridge::MonotonicNanoseconds;
+
+struct Stats {
+  long samples = 0;
+  double mean_period_error_ms = 0;  // mean(t_k - t_{k-1}) - T
+  double p99_jitter_ms = 0;         // 99th percentile of |t_k - t_{k-1} - T|
+  double max_jitter_ms = 0;
+  double drift_ms = 0;              // (t_N - t_0) - N T: lag accumulated over the run
+  double slope_us_per_s = 0;        // least-squares slope of the schedule error
+};
+
+Stats Analyse(const std::vector<std::int64_t>& t, double period) {
+  Stats s;
+  const std::size_t n = t.size();
+  s.samples = static_cast<long>(n);
+  if (n < 3) return s;
+  const double T = period * 1e9;
+  std::vector<double> jit;
+  jit.reserve(n - 1);
+  for (std::size_t k = 1; k < n; ++k) jit.push_back(std::abs(static_cast<double>(t[k] - t[k - 1]) - T));
+  std::sort(jit.begin(), jit.end());
+  const double total = static_cast<double>(t[n - 1] - t[0]);
+  s.mean_period_error_ms = (total / static_cast<double>(n - 1) - T) * 1e-6;
+  s.p99_jitter_ms = jit[static_cast<std::size_t>(0.99 * static_cast<double>(jit.size() - 1))] * 1e-6;
+  s.max_jitter_ms = jit[jit.size() - 1] * 1e-6;
+  s.drift_ms = (total - static_cast<double>(n - 1) * T) * 1e-6;
+  // Slope of e_k = t_k - t_0 - k T against time.
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double x = static_cast<double>(k) * period;
+    const double e = static_cast<double>(t[k] - t[0]) - static_cast<double>(k) * T;
+    sx += x;
+    sy += e;
+    sxx += x * x;
+    sxy += x * e;
+  }
+  const double m = static_cast<double>(n);
+  s.slope_us_per_s = (m * sxy - sx * sy) / (m * sxx - sx * sx) * 1e-3;
+  return s;
+}
+
+std::vector<std::int64_t> RunBridge(const kelvin::sim::ShipParameters& ship, double rate, double seconds,
+                                    kelvin::bridge::BridgeSummary* summary) {
+  lcm::LCM lcm("memq://");
+  kelvin::bridge::BridgeOptions o;
+  o.rate = rate;
+  o.speedup = 1;
+  o.duration = seconds;
+  kelvin::bridge::Bridge bridge(ship, o, lcm);
+  std::vector<std::int64_t> log(static_cast<std::size_t>(std::llround(seconds * rate)) + 1, 0);
+  bridge.SetPublishLog(log);
+  *summary = bridge.Run();
+  return log;
+}
+
+// The peer: the same work per tick, then sleep_for(T).
+std::vector<std::int64_t> RunNaive(const kelvin::sim::ShipParameters& ship, double rate, double seconds) {
+  const kelvin::sim::MmgModel<double> model(ship);
+  const double U = ship.approach_speed;
+  const double period = 1.0 / rate;
+  const int steps = static_cast<int>(std::ceil(period / (ship.principal.Lpp / U / 200.0) - 1e-9));
+  kelvin::sim::SimulatorOptions so;
+  so.method = kelvin::sim::SimulatorOptions::Method::kFixedStep;
+  so.fixed_step = period / steps;
+  kelvin::sim::Simulator sim(model, so);
+  sim.Reset(0, {0, 0, 0, U, 0, 0}, 0, kelvin::sim::SelfPropulsionRps(model, U));
+  lcm::LCM lcm("memq://");
+  kelvin::ship_state_t state{};
+  std::uint8_t buf[512];
+  const long n = std::lround(seconds * rate) + 1;
+  std::vector<std::int64_t> log(static_cast<std::size_t>(n), 0);
+  const auto sleep = std::chrono::nanoseconds(std::llround(period * 1e9));
+  for (long k = 0; k < n; ++k) {
+    if (k > 0) {
+      while (lcm.handleTimeout(0) > 0) {
+      }
+      for (int i = 0; i < steps; ++i) sim.Step();
+      std::this_thread::sleep_for(sleep);
+    }
+    state.seq = k;
+    state.t = sim.time();
+    state.x = sim.state()[0];
+    state.utime = kelvin::bridge::RealtimeMicroseconds();
+    const int len = state.encode(buf, 0, sizeof(buf));
+    lcm.publish("KELVIN_STATE", buf, static_cast<unsigned>(len));
+    log[static_cast<std::size_t>(k)] = MonotonicNanoseconds();
+  }
+  return log;
+}
+
+std::string Section(const Stats& b, const Stats& n, double rate, double seconds, int steps, long late,
+                    long resyncs) {
+  std::ostringstream s;
+  s << "## Bridge pacing\n\n"
+    << fmt::format(
+           "Produced by `build/release/tools/bench/bridge_pacing_bench --write BENCHMARKS.md`: `kelvin bridge` streaming the KVLCC2 in real time at {:g} Hz for {:g} "
+           "s (memq://, helm mode, {} integrator step(s) per state), publish instants on CLOCK_MONOTONIC. The peer is "
+           "a naive loop doing the same steps and publication followed by `sleep_for(T)`, run right after on the "
+           "same machine. Jitter is |t_k - t_(k-1) - T|; drift is (t_N - t_0) - N T.\n\n",
+           rate, seconds, steps)
+    << "| loop | states | mean period error (ms) | p99 jitter (ms) | max jitter (ms) | drift over the run (ms) | "
+       "trend (us/s) |\n"
+    << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n"
+    << fmt::format("| bridge (absolute deadlines, clock_nanosleep) | {} | {:.5f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} |\n",
+                   b.samples, b.mean_period_error_ms, b.p99_jitter_ms, b.max_jitter_ms, b.drift_ms, b.slope_us_per_s)
+    << fmt::format("| naive sleep_for(T) loop | {} | {:.5f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} |\n", n.samples,
+                   n.mean_period_error_ms, n.p99_jitter_ms, n.max_jitter_ms, n.drift_ms, n.slope_us_per_s)
+    << "\n"
+    << fmt::format(
+           "Ratio naive / bridge: mean period error x{:.0f}, drift x{:.0f}. Acceptance (mean period error < 0.1 ms, "
+           "p99 jitter < 2 ms, no drift): {}. The bridge woke more than a period late {} times and re-anchored "
+           "its schedule {} times.\n",
+           std::abs(n.mean_period_error_ms) / std::max(std::abs(b.mean_period_error_ms), 1e-9),
+           std::abs(n.drift_ms) / std::max(std::abs(b.drift_ms), 1e-9),
+           (std::abs(b.mean_period_error_ms) < 0.1 && b.p99_jitter_ms < 2.0 && std::abs(b.drift_ms) < 2.0) ? "met"
+                                                                                                           : "NOT met",
+           late, resyncs);
+  return s.str();
+}
+
+// Replaces the block between <!-- bridge_pacing:begin/end --> (the
+// convention of every bench program), or appends it.
+void ReplaceSection(const std::string& path, const std::string& section) {
+  const std::string begin = "<!-- bridge_pacing:begin -->", end = "<!-- bridge_pacing:end -->";
+  std::string text;
+  {
+    std::ifstream f(path);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    text = ss.str();
+  }
+  const std::string block = begin + "\n" + section + end;
+  const auto b = text.find(begin), e = text.find(end);
+  if (b != std::string::npos && e != std::string::npos && e > b) {
+    text.replace(b, e + end.size() - b, block);
+  } else {
+    if (text.empty()) text = "# Benchmarks\n\nFigures measured on the project's 2-core Debian 12 machine.\n";
+    text += "\n" + block + "\n";
+  }
+  kelvin::data::WriteFileAtomically(path, text);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double seconds = 60, rate = 50;
+  std::string ship_file = "data/ships/kvlcc2.yaml", markdown;
+  bool check = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "bridge_pacing_bench: %s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--seconds") {
+      seconds = std::stod(next());
+    } else if (a == "--rate") {
+      rate = std::stod(next());
+    } else if (a == "--ship") {
+      ship_file = next();
+    } else if (a == "--write") {
+      markdown = next();
+    } else if (a == "--check") {
+      check = true;
+    } else {
+      std::fprintf(stderr, "bridge_pacing_bench: unknown argument '%s'\n", a.c_str());
+      return 2;
+    }
+  }
+  const auto ship = kelvin::sim::LoadShip(ship_file);
+  kelvin::bridge::BridgeSummary summary;
+  const Stats b = Analyse(RunBridge(ship, rate, seconds, &summary), 1.0 / rate);
+  const Stats n = Analyse(RunNaive(ship, rate, seconds), 1.0 / rate);
+  const std::string section = Section(b, n, rate, seconds, summary.steps_per_state, summary.late_ticks, summary.resyncs);
+  std::fputs(section.c_str(), stdout);
+  if (!markdown.empty()) ReplaceSection(markdown, section);
+  if (check && !(std::abs(b.mean_period_error_ms) < 0.1 && b.p99_jitter_ms < 2.0 && std::abs(b.drift_ms) < 2.0)) {
+    return 1;
+  }
+  return 0;
+}
