@@ -58,16 +58,15 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
       "kelvin identify: MMG hull derivatives and added masses, prime system (Yasukawa & Yoshimura "
       "2015).\n"
       "Forces / (0.5 rho L d U^2), moment / (0.5 rho L^2 d U^2), masses / (0.5 rho L^2 d),\n"
-      "J_z / (0.5 rho L^4 d). The hull: section uses the keys of a ship file's hull: section.\n"
+      "J_z / (0.5 rho L^4 d). The hull: section uses the keys of a ship file's hull: section;\n"
+      "the layout is the derivative-set contract of bridge/derivative_set.h.\n"
       "Standard errors are 1 sigma from ceres::Covariance; null = not estimated.");
   y << YAML::BeginMap;
-  y << YAML::Key << "identification" << YAML::Value << YAML::BeginMap;
-  y << YAML::Key << "source" << YAML::Value << rep.source;
+  y << YAML::Key << "derivative_set" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "name" << YAML::Value
+    << rep.campaign->ship.name + " hull derivatives identified by kelvin identify";
   y << YAML::Key << "ship" << YAML::Value << rep.campaign->ship.name;
-  y << YAML::Key << "runs" << YAML::Value << rep.campaign->runs.size();
-  y << YAML::Key << "residuals" << YAML::Value << fit.residuals;
-  y << YAML::Key << "converged" << YAML::Value << fit.converged;
-  y << YAML::Key << "solver" << YAML::Value << fit.solver_report;
+  y << YAML::Key << "source" << YAML::Value << rep.source;
   y << YAML::EndMap;
 
   y << YAML::Key << "hull" << YAML::Value << YAML::BeginMap;
@@ -77,7 +76,7 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
   }
   y << YAML::EndMap;
 
-  y << YAML::Key << "std_error" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "standard_errors" << YAML::Value << YAML::BeginMap;
   for (int i = 0; i < kCoefficientCount; ++i) {
     y << YAML::Key << std::string(kNames[i]) << YAML::Value;
     if (std::isfinite(fit.std_error[i])) {
@@ -88,6 +87,11 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
   }
   y << YAML::EndMap;
 
+  y << YAML::Key << "fit" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "runs" << YAML::Value << rep.campaign->runs.size();
+  y << YAML::Key << "residuals" << YAML::Value << fit.residuals;
+  y << YAML::Key << "converged" << YAML::Value << fit.converged;
+  y << YAML::Key << "solver" << YAML::Value << fit.solver_report;
   y << YAML::Key << "status" << YAML::Value << YAML::BeginMap;
   for (int i = 0; i < kCoefficientCount; ++i) {
     std::string s(CoefficientStatusName(fit.status[i]));
@@ -137,6 +141,7 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
     }
     y << YAML::EndSeq;
   }
+  y << YAML::EndMap;  // fit
   y << YAML::EndMap;
   return std::string(y.c_str()) + "\n";
 }

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 
+#include "bridge/derivative_set.h"
 #include "data/schema/h5_file.h"
 #include "identification/captive_io.h"
 #include "identification/virtual_captive.h"
@@ -47,8 +48,14 @@ TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
     EXPECT_NEAR(identified.hull[i], truth.hull[i], 0.005 * std::abs(truth.hull[i]))
         << sim::HullCoefficients<double>::kNames[i];
     EXPECT_TRUE(
-        out["std_error"][std::string(sim::HullCoefficients<double>::kNames[i])].IsDefined());
+        out["standard_errors"][std::string(sim::HullCoefficients<double>::kNames[i])].IsDefined());
   }
+  // The bridge streams it as a derivative set (unchecked against CFD so far).
+  const bridge::DerivativeSet set = bridge::LoadDerivativeSet(dir / "kvlcc2_derivatives.yaml");
+  for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
+    EXPECT_EQ(set.hull[i], identified.hull[i]) << sim::HullCoefficients<double>::kNames[i];
+  }
+  EXPECT_FALSE(set.check.has_value());
   // HDF5 beside it: the full covariance and per-run measured/fitted forces.
   const data::H5Reader h5(dir / "kvlcc2_derivatives.h5");
   const data::Series cov = h5.Read("/covariance");
