@@ -163,6 +163,19 @@ void ValidateCampaign(const CaptiveCampaign& c, std::string_view source) {
         fmt::format("{}: ship attribute 'x_G' = {}: expected a finite number", source, s.x_G));
   }
   if (c.runs.empty()) throw DataFileError(fmt::format("{}: the campaign holds no runs", source));
+  for (std::size_t r = 0; r < c.runs.size(); ++r) {
+    const std::string& name = c.runs[r].name;
+    if (name.empty() || name.find('/') != std::string::npos) {
+      throw DataFileError(
+          fmt::format("{}: run {}: name '{}' is empty or contains '/'", source, r, name));
+    }
+    for (std::size_t q = 0; q < r; ++q) {
+      if (c.runs[q].name == name) {
+        throw DataFileError(
+            fmt::format("{}: run '{}' appears twice (runs {} and {})", source, name, q, r));
+      }
+    }
+  }
   for (const CaptiveRun& run : c.runs) {
     const MotionParameters& m = run.motion;
     RequirePositive(source, run, "U", m.U);

@@ -153,5 +153,22 @@ TEST(CaptiveRunTest, BadShipDataNamesTheAttribute) {
   }
 }
 
+TEST(CaptiveRunTest, DuplicateRunNamesAreRejected) {
+  const sim::ShipParameters ship = Kvlcc2();
+  CaptiveCampaign c;
+  c.ship = CaptiveShipFrom(ship);
+  const CaptiveRun run =
+      GenerateRun(sim::MmgModel<double>(ship), "sway", Motion(MotionKind::kPureSway), {});
+  c.runs = {run, run};
+  try {
+    ValidateCampaign(c, "runs.csv");
+    FAIL();
+  } catch (const DataFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("runs.csv: run 'sway' appears twice (runs 0 and 1)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace kelvin::ident
