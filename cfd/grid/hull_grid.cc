@@ -44,6 +44,16 @@ void RequireCells(const char* key, int n, int min) {
   }
 }
 
+// Horizontal distance d of a node whose unstretched distance is d0: the
+// near-wall steps are stretched by `stretch` >= 1 and the stretch fades
+// over kStretchFade first-cell heights (d' > 0 for stretch < 1 + e^2).
+constexpr double kStretchFade = 8.0;
+// Largest stretch: more shears the thin wall cells where it varies along x.
+constexpr double kMaxStretch = 1.2;
+double WallDistanceStretch(double d0, double stretch, double h) {
+  return d0 * (1.0 + (stretch - 1.0) * std::exp(-d0 / (kStretchFade * h)));
+}
+
 struct Face {
   int owner;
   int neighbour;  // -1 on the boundary
@@ -125,7 +135,8 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     std::vector<double> z;
     std::vector<double> f[2];
     bool on_hull;
-    std::vector<double> tilt[2];  // initial slope dz/dd of the lines
+    std::vector<double> tilt[2];   // initial slope dz/dd of the lines
+    std::vector<double> slope[2];  // section slope d(half-breadth)/dz at the nodes (0 off the hull)
   };
   std::vector<Station> stations(nx + 1);
   for (int k = 0; k <= nx; ++k) {
@@ -176,7 +187,7 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
         f[1][j] = std::max(0.0, br[j][1]);
       }
     }
-    stations[k] = {draft, std::move(z), {std::move(f[0]), std::move(f[1])}, on_hull, {}};
+    stations[k] = {draft, std::move(z), {std::move(f[0]), std::move(f[1])}, on_hull, {}, {}};
   }
   // Lines relax to horizontal, and their offsets from the hull shape fade,
   // over one length for the whole grid, so that far from the hull the nodes
@@ -232,6 +243,10 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
         ts[j] = std::clamp(0.5 * (hi + lo), -bound, bound);
       }
       stations[k].tilt[side] = std::move(ts);
+      std::vector<double> slope(nj + 1, 0.0);
+      for (int j = 0; j <= ng && on_hull; ++j) slope[j] = tau[j] / kTiltFraction;
+      if (on_hull) slope[ng] *= 2.0;  // the one-sided slope of the last hull face
+      stations[k].slope[side] = std::move(slope);
     }
   }
   // The same envelopes along x keep the surfaces j = const from tilting
@@ -262,6 +277,15 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     for (int side = 0; side < 2; ++side) {
       const std::vector<double>& fs = f[side];
       const std::vector<double>& ts = stations[k].tilt[side];
+      // A line that leaves the wall with slope t where the section has slope
+      // s reaches the wall-normal distance h (1 + t s) / sqrt(1 + s^2) after
+      // the horizontal step h: stretch its first steps by the inverse so the
+      // first node is the target height from the wall.
+      std::vector<double> stretch(nj + 1, 1.0);
+      for (int j = 0; j <= nj; ++j) {
+        const double sl = stations[k].slope[side][j];
+        stretch[j] = std::min(kMaxStretch, std::sqrt(1.0 + sl * sl) / (1.0 + ts[j] * sl));
+      }
       for (int j = 0; j <= nj; ++j) {
         const double sign = side == 0 ? -1.0 : 1.0;
         for (int i = 0; i <= ni; ++i) {
@@ -269,7 +293,7 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
             pid[slot(k, 1, 0, j)] = pid[slot(k, 0, 0, j)];
             continue;
           }
-          const double di = sigma[i] * W;
+          const double di = WallDistanceStretch(sigma[i] * W, stretch[j], h_wall);
           const double y = (i == ni) ? sign * W : sign * (fs[j] + di - fs[j] * fade(di));
           const double zz = z[j] - ts[j] * relax * (1.0 - std::exp(-di / relax));
           pid[slot(k, side, i, j)] = static_cast<int>(points.size());
