@@ -34,24 +34,16 @@ constexpr double kMaxSectionSlope = 4.0;
 
 void RequirePositive(const char* key, double v) {
   if (!(v > 0) || !std::isfinite(v)) {
-    throw ConfigError(fmt::format("hull grid option '{}' = {}: expected a finite number > 0", key, v));
+    throw ConfigError(
+        fmt::format("hull grid option '{}' = {}: expected a finite number > 0", key, v));
   }
 }
 
 void RequireCells(const char* key, int n, int min) {
   if (n < min || n > 100000) {
-    throw ConfigError(fmt::format("hull grid option '{}' = {}: expected an integer in [{}, 100000]", key, n, min));
+    throw ConfigError(fmt::format("hull grid option '{}' = {}: expected an integer in [{}, 100000]",
+                                  key, n, min));
   }
-}
-
-// Horizontal distance d of a node whose unstretched distance is d0: the
-// near-wall steps are stretched by `stretch` >= 1 and the stretch fades
-// over kStretchFade first-cell heights (d' > 0 for stretch < 1 + e^2).
-constexpr double kStretchFade = 8.0;
-// Largest stretch: more shears the thin wall cells where it varies along x.
-constexpr double kMaxStretch = 1.2;
-double WallDistanceStretch(double d0, double stretch, double h) {
-  return d0 * (1.0 + (stretch - 1.0) * std::exp(-d0 / (kStretchFade * h)));
 }
 
 struct Face {
@@ -78,13 +70,16 @@ void HullGridOptions::Validate() const {
   RequirePositive("keel_spacing", keel_spacing);
   RequirePositive("y_plus", y_plus);
   if (!(reynolds >= 1e3) || !std::isfinite(reynolds)) {
-    throw ConfigError(fmt::format("hull grid option 'reynolds' = {}: expected a finite number >= 1000", reynolds));
+    throw ConfigError(fmt::format(
+        "hull grid option 'reynolds' = {}: expected a finite number >= 1000", reynolds));
   }
 }
 
 HullGridOptions HullGridOptions::Coarsened(double ratio) const {
   HullGridOptions o = *this;
-  auto scale = [ratio](int n, int min) { return std::max(min, static_cast<int>(std::lround(n / ratio))); };
+  auto scale = [ratio](int n, int min) {
+    return std::max(min, static_cast<int>(std::lround(n / ratio)));
+  };
   o.cells_hull = scale(cells_hull, 2);
   o.cells_upstream = scale(cells_upstream, 1);
   o.cells_downstream = scale(cells_downstream, 1);
@@ -96,7 +91,8 @@ HullGridOptions HullGridOptions::Coarsened(double ratio) const {
 }
 
 int HullGridOptions::CellCount() const {
-  return (cells_hull + cells_upstream + cells_downstream) * 2 * (cells_girth + cells_below_keel) * cells_normal;
+  return (cells_hull + cells_upstream + cells_downstream) * 2 * (cells_girth + cells_below_keel) *
+         cells_normal;
 }
 
 Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridInfo* info) {
@@ -108,8 +104,10 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
   // Stations.
   const std::vector<double> sx = TwoSidedNodes(o.cells_hull, L, o.end_spacing * L / o.cells_hull,
                                                o.end_spacing * L / o.cells_hull);
-  const std::vector<double> up = GeometricNodes(o.cells_upstream, o.upstream * L, sx[o.cells_hull] - sx[o.cells_hull - 1]);
-  const std::vector<double> down = GeometricNodes(o.cells_downstream, o.downstream * L, sx[1] - sx[0]);
+  const std::vector<double> up =
+      GeometricNodes(o.cells_upstream, o.upstream * L, sx[o.cells_hull] - sx[o.cells_hull - 1]);
+  const std::vector<double> down =
+      GeometricNodes(o.cells_downstream, o.downstream * L, sx[1] - sx[0]);
   std::vector<double> x;
   for (int i = o.cells_downstream; i >= 1; --i) x.push_back(xa - down[i]);
   for (double s : sx) x.push_back(xa + s);
@@ -121,7 +119,9 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
 
   // Point indices: [k][side][i][j], side 0 = -y, 1 = +y; inner points on the
   // centreplane are shared by both sides.
-  auto slot = [&](int k, int side, int i, int j) { return ((static_cast<std::size_t>(k) * 2 + side) * (ni + 1) + i) * (nj + 1) + j; };
+  auto slot = [&](int k, int side, int i, int j) {
+    return ((static_cast<std::size_t>(k) * 2 + side) * (ni + 1) + i) * (nj + 1) + j;
+  };
   std::vector<int> pid(static_cast<std::size_t>(nx + 1) * 2 * (ni + 1) * (nj + 1), -1);
   std::vector<Vector3> points;
   points.reserve(pid.size());
@@ -136,7 +136,6 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     std::vector<double> f[2];
     bool on_hull;
     std::vector<double> tilt[2];   // initial slope dz/dd of the lines
-    std::vector<double> slope[2];  // section slope d(half-breadth)/dz at the nodes (0 off the hull)
   };
   std::vector<Station> stations(nx + 1);
   for (int k = 0; k <= nx; ++k) {
@@ -144,15 +143,17 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     const double keel = hull.KeelZ(std::clamp(xk, xa, xf));
     const double draft = -keel;
     if (!(D > 1.05 * draft)) {
-      throw ConfigError(fmt::format("hull grid option 'depth' = {} hull lengths puts the bottom at z = {:.6g} m, above "
-                                    "or too close to the keel at z = {:.6g} m of {}",
-                                    o.depth, -D, keel, hull.name()));
+      throw ConfigError(fmt::format(
+          "hull grid option 'depth' = {} hull lengths puts the bottom at z = {:.6g} m, above "
+          "or too close to the keel at z = {:.6g} m of {}",
+          o.depth, -D, keel, hull.name()));
     }
     // Nodes along the inner boundary: hull from the waterline to the keel,
     // then the centreplane down to the bottom.
-    const std::vector<double> zg = TwoSidedNodes(ng, draft, o.free_surface_spacing * draft / ng,
-                                                 o.keel_spacing * draft / ng);
-    const std::vector<double> zb = GeometricNodes(o.cells_below_keel, D - draft, zg[ng] - zg[ng - 1]);
+    const std::vector<double> zg =
+        TwoSidedNodes(ng, draft, o.free_surface_spacing * draft / ng, o.keel_spacing * draft / ng);
+    const std::vector<double> zb =
+        GeometricNodes(o.cells_below_keel, D - draft, zg[ng] - zg[ng - 1]);
     std::vector<double> z(nj + 1);
     for (int j = 0; j <= ng; ++j) z[j] = -zg[j];
     z[ng] = keel;
@@ -167,27 +168,30 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     if (on_hull) {
       const auto br = hull.Breadths(xk, std::span<const double>(z.data(), ng + 1));
       if (!(br[0][1] > br[0][0])) {
-        throw DataFileError(fmt::format("{}: the section at x = {:.6g} m does not reach the waterline z = 0 (a bulb "
-                                        "or a raked stem?); the built-in generator needs sections from the waterline "
-                                        "to the keel: use mesh method 'snappy'",
-                                        hull.name(), xk));
+        throw DataFileError(fmt::format(
+            "{}: the section at x = {:.6g} m does not reach the waterline z = 0 (a bulb "
+            "or a raked stem?); the built-in generator needs sections from the waterline "
+            "to the keel: use mesh method 'snappy'",
+            hull.name(), xk));
       }
       for (int j = 0; j < ng; ++j) {
         if (br[j][0] > 1e-9 * L || br[j][1] < -1e-9 * L) {
-          throw DataFileError(fmt::format("{}: the section at x = {:.6g} m, z = {:.6g} m spans y = [{:.6g}, {:.6g}] m and "
-                                          "does not contain the centreplane y = 0; use mesh method 'snappy'",
-                                          hull.name(), xk, z[j], br[j][0], br[j][1]));
+          throw DataFileError(fmt::format(
+              "{}: the section at x = {:.6g} m, z = {:.6g} m spans y = [{:.6g}, {:.6g}] m and "
+              "does not contain the centreplane y = 0; use mesh method 'snappy'",
+              hull.name(), xk, z[j], br[j][0], br[j][1]));
         }
         if (!(br[j][1] > br[j][0])) {
-          throw DataFileError(fmt::format("{}: the section at x = {:.6g} m has no hull at z = {:.6g} m above its keel "
-                                          "at z = {:.6g} m (not simply connected); use mesh method 'snappy'",
-                                          hull.name(), xk, z[j], keel));
+          throw DataFileError(fmt::format(
+              "{}: the section at x = {:.6g} m has no hull at z = {:.6g} m above its keel "
+              "at z = {:.6g} m (not simply connected); use mesh method 'snappy'",
+              hull.name(), xk, z[j], keel));
         }
         f[0][j] = std::max(0.0, -br[j][0]);
         f[1][j] = std::max(0.0, br[j][1]);
       }
     }
-    stations[k] = {draft, std::move(z), {std::move(f[0]), std::move(f[1])}, on_hull, {}, {}};
+    stations[k] = {draft, std::move(z), {std::move(f[0]), std::move(f[1])}, on_hull, {}};
   }
   // Lines relax to horizontal, and their offsets from the hull shape fade,
   // over one length for the whole grid, so that far from the hull the nodes
@@ -204,7 +208,9 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
   // normalised to R(W) = 1: R'(0) = 0, so a line's first step from the wall
   // is unchanged, and R' <= 1 / (e l) keeps the lines moving outwards.
   const double fade_norm = 1.0 - (1.0 + W / relax) * std::exp(-W / relax);
-  auto fade = [&](double d) { return (1.0 - (1.0 + d / relax) * std::exp(-d / relax)) / fade_norm; };
+  auto fade = [&](double d) {
+    return (1.0 - (1.0 + d / relax) * std::exp(-d / relax)) / fade_norm;
+  };
   for (int k = 0; k <= nx; ++k) {
     const double xk = x[k];
     const std::vector<double>& z = stations[k].z;
@@ -219,10 +225,11 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
         tau[ng] = 0.5 * (fs[ng] - fs[ng - 1]) / (z[ng] - z[ng - 1]);
         for (int j = 1; j <= ng; ++j) {
           if (std::abs(tau[j]) > kMaxSectionSlope) {
-            throw DataFileError(fmt::format("{}: the section at x = {:.6g} m is too flat at z = {:.6g} m (|dy/dz| = "
-                                            "{:.3g} > {}); the built-in generator needs V-shaped sections: use mesh "
-                                            "method 'snappy'",
-                                            hull.name(), xk, z[j], std::abs(tau[j]), kMaxSectionSlope));
+            throw DataFileError(fmt::format(
+                "{}: the section at x = {:.6g} m is too flat at z = {:.6g} m (|dy/dz| = "
+                "{:.3g} > {}); the built-in generator needs V-shaped sections: use mesh "
+                "method 'snappy'",
+                hull.name(), xk, z[j], std::abs(tau[j]), kMaxSectionSlope));
           }
           // Lines leave at kTiltFraction of the normal's tilt: fully normal
           // lines shear the cells where the tilt fades in x and along the girth.
@@ -243,10 +250,6 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
         ts[j] = std::clamp(0.5 * (hi + lo), -bound, bound);
       }
       stations[k].tilt[side] = std::move(ts);
-      std::vector<double> slope(nj + 1, 0.0);
-      for (int j = 0; j <= ng && on_hull; ++j) slope[j] = tau[j] / kTiltFraction;
-      if (on_hull) slope[ng] *= 2.0;  // the one-sided slope of the last hull face
-      stations[k].slope[side] = std::move(slope);
     }
   }
   // The same envelopes along x keep the surfaces j = const from tilting
@@ -277,15 +280,6 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     for (int side = 0; side < 2; ++side) {
       const std::vector<double>& fs = f[side];
       const std::vector<double>& ts = stations[k].tilt[side];
-      // A line that leaves the wall with slope t where the section has slope
-      // s reaches the wall-normal distance h (1 + t s) / sqrt(1 + s^2) after
-      // the horizontal step h: stretch its first steps by the inverse so the
-      // first node is the target height from the wall.
-      std::vector<double> stretch(nj + 1, 1.0);
-      for (int j = 0; j <= nj; ++j) {
-        const double sl = stations[k].slope[side][j];
-        stretch[j] = std::min(kMaxStretch, std::sqrt(1.0 + sl * sl) / (1.0 + ts[j] * sl));
-      }
       for (int j = 0; j <= nj; ++j) {
         const double sign = side == 0 ? -1.0 : 1.0;
         for (int i = 0; i <= ni; ++i) {
@@ -293,7 +287,7 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
             pid[slot(k, 1, 0, j)] = pid[slot(k, 0, 0, j)];
             continue;
           }
-          const double di = WallDistanceStretch(sigma[i] * W, stretch[j], h_wall);
+          const double di = sigma[i] * W;
           const double y = (i == ni) ? sign * W : sign * (fs[j] + di - fs[j] * fade(di));
           const double zz = z[j] - ts[j] * relax * (1.0 - std::exp(-di / relax));
           pid[slot(k, side, i, j)] = static_cast<int>(points.size());
@@ -320,7 +314,8 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     for (int m = 0; m < 4; ++m) n += points[q[m]].cross(points[q[(m + 1) % 4]]);
     return n;
   };
-  auto add_internal = [&](int c0, int c1, std::array<int, 4> q, const Vector3& x0, const Vector3& x1) {
+  auto add_internal = [&](int c0, int c1, std::array<int, 4> q, const Vector3& x0,
+                          const Vector3& x1) {
     if (c0 > c1) {
       std::swap(c0, c1);
       if (newell(q).dot(x0 - x1) < 0) std::reverse(q.begin(), q.end());
@@ -344,38 +339,55 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
           const Vector3 xc = centre(k, side, i, j);
           auto P = [&](int kk, int ii, int jj) { return pid[slot(kk, side, ii, jj)]; };
           // +x face.
-          const std::array<int, 4> fx = {P(k + 1, i, j), P(k + 1, i + 1, j), P(k + 1, i + 1, j + 1), P(k + 1, i, j + 1)};
-          if (k + 1 < nx) add_internal(c, cell(k + 1, side, i, j), fx, xc, centre(k + 1, side, i, j));
-          else add_boundary(kInlet, c, fx, xc);
-          if (k == 0) add_boundary(kOutlet, c, {P(0, i, j), P(0, i + 1, j), P(0, i + 1, j + 1), P(0, i, j + 1)}, xc);
+          const std::array<int, 4> fx = {P(k + 1, i, j), P(k + 1, i + 1, j), P(k + 1, i + 1, j + 1),
+                                         P(k + 1, i, j + 1)};
+          if (k + 1 < nx)
+            add_internal(c, cell(k + 1, side, i, j), fx, xc, centre(k + 1, side, i, j));
+          else
+            add_boundary(kInlet, c, fx, xc);
+          if (k == 0)
+            add_boundary(kOutlet, c,
+                         {P(0, i, j), P(0, i + 1, j), P(0, i + 1, j + 1), P(0, i, j + 1)}, xc);
           // +i face.
-          const std::array<int, 4> fi = {P(k, i + 1, j), P(k + 1, i + 1, j), P(k + 1, i + 1, j + 1), P(k, i + 1, j + 1)};
-          if (i + 1 < ni) add_internal(c, cell(k, side, i + 1, j), fi, xc, centre(k, side, i + 1, j));
-          else add_boundary(kSide, c, fi, xc);
+          const std::array<int, 4> fi = {P(k, i + 1, j), P(k + 1, i + 1, j), P(k + 1, i + 1, j + 1),
+                                         P(k, i + 1, j + 1)};
+          if (i + 1 < ni)
+            add_internal(c, cell(k, side, i + 1, j), fi, xc, centre(k, side, i + 1, j));
+          else
+            add_boundary(kSide, c, fi, xc);
           if (i == 0) {
-            const std::array<int, 4> f0 = {P(k, 0, j), P(k + 1, 0, j), P(k + 1, 0, j + 1), P(k, 0, j + 1)};
+            const std::array<int, 4> f0 = {P(k, 0, j), P(k + 1, 0, j), P(k + 1, 0, j + 1),
+                                           P(k, 0, j + 1)};
             if (k >= k_aft && k < k_fore && j < ng) {
               add_boundary(kHull, c, f0, xc);
             } else if (side == 1) {
               for (int m = 0; m < 4; ++m) {
-                KELVIN_CHECK(f0[m] == (std::array<int, 4>{pid[slot(k, 0, 0, j)], pid[slot(k + 1, 0, 0, j)],
-                                                          pid[slot(k + 1, 0, 0, j + 1)], pid[slot(k, 0, 0, j + 1)]})[m],
-                             "centreplane face not shared by the port and starboard blocks");
+                KELVIN_CHECK(
+                    f0[m] == (std::array<int, 4>{pid[slot(k, 0, 0, j)], pid[slot(k + 1, 0, 0, j)],
+                                                 pid[slot(k + 1, 0, 0, j + 1)],
+                                                 pid[slot(k, 0, 0, j + 1)]})[m],
+                    "centreplane face not shared by the port and starboard blocks");
               }
               add_internal(cell(k, 0, 0, j), c, f0, centre(k, 0, 0, j), xc);
             }
           }
           // +j face (downwards).
-          const std::array<int, 4> fj = {P(k, i, j + 1), P(k + 1, i, j + 1), P(k + 1, i + 1, j + 1), P(k, i + 1, j + 1)};
-          if (j + 1 < nj) add_internal(c, cell(k, side, i, j + 1), fj, xc, centre(k, side, i, j + 1));
-          else add_boundary(kBottom, c, fj, xc);
-          if (j == 0) add_boundary(kFreeSurface, c, {P(k, i, 0), P(k + 1, i, 0), P(k + 1, i + 1, 0), P(k, i + 1, 0)}, xc);
+          const std::array<int, 4> fj = {P(k, i, j + 1), P(k + 1, i, j + 1), P(k + 1, i + 1, j + 1),
+                                         P(k, i + 1, j + 1)};
+          if (j + 1 < nj)
+            add_internal(c, cell(k, side, i, j + 1), fj, xc, centre(k, side, i, j + 1));
+          else
+            add_boundary(kBottom, c, fj, xc);
+          if (j == 0)
+            add_boundary(kFreeSurface, c,
+                         {P(k, i, 0), P(k + 1, i, 0), P(k + 1, i + 1, 0), P(k, i + 1, 0)}, xc);
         }
       }
     }
   }
-  std::sort(internal.begin(), internal.end(),
-            [](const Face& a, const Face& b) { return std::tie(a.owner, a.neighbour) < std::tie(b.owner, b.neighbour); });
+  std::sort(internal.begin(), internal.end(), [](const Face& a, const Face& b) {
+    return std::tie(a.owner, a.neighbour) < std::tie(b.owner, b.neighbour);
+  });
 
   std::vector<std::vector<int>> faces;
   std::vector<int> owner, neighbour;
@@ -403,8 +415,8 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     info->first_cell_height = h_wall;
     info->max_line_tilt_deg = max_tilt;
   }
-  return Mesh(std::move(points), std::move(faces), std::move(owner), std::move(neighbour), std::move(patches),
-              fmt::format("hull grid of {}", hull.name()));
+  return Mesh(std::move(points), std::move(faces), std::move(owner), std::move(neighbour),
+              std::move(patches), fmt::format("hull grid of {}", hull.name()));
 }
 
 double HullPatchVolume(const Mesh& mesh) {
@@ -434,15 +446,18 @@ YPlusEstimate EstimateYPlus(const Mesh& mesh, double reynolds, double length) {
   double area = 0.0;
   for (int f = patch.start; f < patch.start + patch.size; ++f) {
     const Vector3 n = mesh.face_areas()[f] / mesh.face_area_magnitudes()[f];
-    const double y = std::abs((mesh.face_centres()[f] - mesh.cell_centres()[mesh.owner()[f]]).dot(n));
+    const double y =
+        std::abs((mesh.face_centres()[f] - mesh.cell_centres()[mesh.owner()[f]]).dot(n));
     const double yp = YPlusAt(y, reynolds, length);
     e.min = std::min(e.min, yp);
     e.max = std::max(e.max, yp);
     e.mean += yp * mesh.face_area_magnitudes()[f];
     area += mesh.face_area_magnitudes()[f];
   }
-  if (area > 0) e.mean /= area;
-  else e.min = 0;
+  if (area > 0)
+    e.mean /= area;
+  else
+    e.min = 0;
   return e;
 }
 

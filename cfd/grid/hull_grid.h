@@ -31,12 +31,12 @@ struct HullGridOptions {
   double half_width = 1.0;  // side planes at y = +-half_width L
   double depth = 1.0;       // bottom at z = -depth L
   // Cells.
-  int cells_hull = 60;          // along the hull (x)
-  int cells_upstream = 15;      // bow to inlet
-  int cells_downstream = 30;    // stern to outlet
-  int cells_girth = 24;         // each side, waterline to keel
-  int cells_below_keel = 16;    // keel to bottom
-  int cells_normal = 32;        // hull (or centreplane) to side
+  int cells_hull = 60;        // along the hull (x)
+  int cells_upstream = 15;    // bow to inlet
+  int cells_downstream = 30;  // stern to outlet
+  int cells_girth = 24;       // each side, waterline to keel
+  int cells_below_keel = 16;  // keel to bottom
+  int cells_normal = 32;      // hull (or centreplane) to side
   // Spacing at bow and stern relative to the mean L / cells_hull.
   double end_spacing = 0.25;
   // Vertical spacing at z = 0 and at the keel relative to the mean draft / cells_girth.
@@ -64,7 +64,8 @@ struct HullGridInfo {
 // Builds the grid. Throws DataFileError if the hull cannot be gridded by
 // this topology (a section that does not reach the waterline, does not
 // contain the centreplane, or has flat parts; use the snappyHexMesh path).
-Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& options, HullGridInfo* info = nullptr);
+Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& options,
+                  HullGridInfo* info = nullptr);
 
 // Volume enclosed by the `hull` patch and the waterplane z = 0 (m^3):
 // -sum over the hull faces of z_t S_t,z over the triangles each face is

@@ -13,11 +13,13 @@ namespace kelvin::cfd {
 
 WigleySections::WigleySections(double L, double B, double T) : L_(L), B_(B), T_(T) {
   if (!(L > 0) || !(B > 0) || !(T > 0)) {
-    throw ConfigError(fmt::format("Wigley hull: L, B and T must be > 0; got L = {} m, B = {} m, T = {} m", L, B, T));
+    throw ConfigError(fmt::format(
+        "Wigley hull: L, B and T must be > 0; got L = {} m, B = {} m, T = {} m", L, B, T));
   }
 }
 
-std::vector<std::array<double, 2>> WigleySections::Breadths(double x, std::span<const double> z) const {
+std::vector<std::array<double, 2>> WigleySections::Breadths(double x,
+                                                            std::span<const double> z) const {
   const double xi = 2.0 * (x - 0.5 * L_) / L_;
   const double bx = (std::abs(xi) >= 1.0) ? 0.0 : 0.5 * B_ * (1.0 - xi * xi);
   std::vector<std::array<double, 2>> out(z.size(), {0.0, 0.0});
@@ -30,14 +32,16 @@ std::vector<std::array<double, 2>> WigleySections::Breadths(double x, std::span<
   return out;
 }
 
-std::string WigleySections::name() const { return fmt::format("Wigley hull L={} B={} T={}", L_, B_, T_); }
+std::string WigleySections::name() const {
+  return fmt::format("Wigley hull L={} B={} T={}", L_, B_, T_);
+}
 
 SurfaceSections::SurfaceSections(TriangleSurface surface) : surface_(std::move(surface)) {
   x_aft_ = std::numeric_limits<double>::infinity();
   x_fore_ = -std::numeric_limits<double>::infinity();
   for (const auto& t : surface_.triangles) {
-    for (const auto& tri :
-         ClipBelowWaterline(surface_.vertices[t[0]], surface_.vertices[t[1]], surface_.vertices[t[2]])) {
+    for (const auto& tri : ClipBelowWaterline(surface_.vertices[t[0]], surface_.vertices[t[1]],
+                                              surface_.vertices[t[2]])) {
       for (const auto& p : tri) {
         x_aft_ = std::min(x_aft_, p.x());
         x_fore_ = std::max(x_fore_, p.x());
@@ -45,7 +49,8 @@ SurfaceSections::SurfaceSections(TriangleSurface surface) : surface_(std::move(s
     }
   }
   if (!(x_fore_ > x_aft_)) {
-    throw DataFileError(fmt::format("{}: no part of the hull lies below the waterline z = 0", surface_.source));
+    throw DataFileError(
+        fmt::format("{}: no part of the hull lies below the waterline z = 0", surface_.source));
   }
 }
 
@@ -78,12 +83,14 @@ double SurfaceSections::KeelZ(double x) const {
   double zmin = 0.0;
   for (const auto& s : Slice(xs)) zmin = std::min({zmin, s[1], s[3]});
   if (!(zmin < 0.0)) {
-    throw DataFileError(fmt::format("{}: the section at x = {:.6g} m has no part below the waterline", surface_.source, x));
+    throw DataFileError(fmt::format(
+        "{}: the section at x = {:.6g} m has no part below the waterline", surface_.source, x));
   }
   return zmin;
 }
 
-std::vector<std::array<double, 2>> SurfaceSections::Breadths(double x, std::span<const double> z) const {
+std::vector<std::array<double, 2>> SurfaceSections::Breadths(double x,
+                                                             std::span<const double> z) const {
   const auto segments = Slice(x);
   std::vector<std::array<double, 2>> out(z.size(), {0.0, 0.0});
   for (std::size_t j = 0; j < z.size(); ++j) {

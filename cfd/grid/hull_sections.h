@@ -24,7 +24,8 @@ class HullSections {
   virtual double KeelZ(double x) const = 0;
   // (y_min, y_max) of the section at x at each depth z (m); (0, 0) where the
   // depth is below the keel.
-  virtual std::vector<std::array<double, 2>> Breadths(double x, std::span<const double> z) const = 0;
+  virtual std::vector<std::array<double, 2>> Breadths(double x,
+                                                      std::span<const double> z) const = 0;
   // Names the hull in messages.
   virtual std::string name() const = 0;
   double length() const { return x_fore() - x_aft(); }

@@ -20,7 +20,8 @@ using data::ConfigNode;
 
 namespace {
 
-double Number(const ConfigNode& parent, std::string_view key, double fallback, double min, bool min_open = true) {
+double Number(const ConfigNode& parent, std::string_view key, double fallback, double min,
+              bool min_open = true) {
   auto child = parent.Find(key);
   if (!child) return fallback;
   const double v = child->As<double>();
@@ -41,14 +42,17 @@ int Integer(const ConfigNode& parent, std::string_view key, int fallback, int mi
 void ParseDomain(const ConfigNode& d, MeshCase& c) {
   d.ExpectKeys({"upstream", "downstream", "half_width", "depth"});
   c.structured.upstream = c.snappy.upstream = Number(d, "upstream", c.structured.upstream, 0.0);
-  c.structured.downstream = c.snappy.downstream = Number(d, "downstream", c.structured.downstream, 0.0);
-  c.structured.half_width = c.snappy.half_width = Number(d, "half_width", c.structured.half_width, 0.0);
+  c.structured.downstream = c.snappy.downstream =
+      Number(d, "downstream", c.structured.downstream, 0.0);
+  c.structured.half_width = c.snappy.half_width =
+      Number(d, "half_width", c.structured.half_width, 0.0);
   c.structured.depth = c.snappy.depth = Number(d, "depth", c.structured.depth, 0.0);
 }
 
 void ParseStructured(const ConfigNode& s, HullGridOptions& o) {
-  s.ExpectKeys({"cells_hull", "cells_upstream", "cells_downstream", "cells_girth", "cells_below_keel", "cells_normal",
-                "end_spacing", "free_surface_spacing", "keel_spacing"});
+  s.ExpectKeys({"cells_hull", "cells_upstream", "cells_downstream", "cells_girth",
+                "cells_below_keel", "cells_normal", "end_spacing", "free_surface_spacing",
+                "keel_spacing"});
   o.cells_hull = Integer(s, "cells_hull", o.cells_hull, 2, 100000);
   o.cells_upstream = Integer(s, "cells_upstream", o.cells_upstream, 1, 100000);
   o.cells_downstream = Integer(s, "cells_downstream", o.cells_downstream, 1, 100000);
@@ -61,12 +65,13 @@ void ParseStructured(const ConfigNode& s, HullGridOptions& o) {
 }
 
 void ParseSnappy(const ConfigNode& s, SnappyOptions& o) {
-  s.ExpectKeys({"base_cells_per_length", "hull_level", "wake_level", "layers", "expansion_ratio", "feature_angle",
-                "openfoam_bashrc"});
+  s.ExpectKeys({"base_cells_per_length", "hull_level", "wake_level", "layers", "expansion_ratio",
+                "feature_angle", "openfoam_bashrc"});
   o.base_cells_per_length = Integer(s, "base_cells_per_length", o.base_cells_per_length, 2, 200);
   o.hull_level = Integer(s, "hull_level", o.hull_level, 0, 8);
   o.wake_level = Integer(s, "wake_level", o.wake_level, 0, 8);
-  if (o.wake_level > o.hull_level) s["wake_level"].Fail(fmt::format("at most hull_level = {}", o.hull_level));
+  if (o.wake_level > o.hull_level)
+    s["wake_level"].Fail(fmt::format("at most hull_level = {}", o.hull_level));
   if (auto layers = s.Find("layers")) {
     if (layers->IsScalar() && layers->yaml().Scalar() == "auto") {
       o.layers = SnappyOptions::kAutoLayers;
@@ -82,14 +87,16 @@ void ParseSnappy(const ConfigNode& s, SnappyOptions& o) {
   }
   if (auto fa = s.Find("feature_angle")) {
     o.feature_angle = fa->As<double>();
-    if (!(o.feature_angle > 0.0 && o.feature_angle < 180.0)) fa->Fail("an angle in degrees in (0, 180)");
+    if (!(o.feature_angle > 0.0 && o.feature_angle < 180.0))
+      fa->Fail("an angle in degrees in (0, 180)");
   }
   o.openfoam_bashrc = s.Get<std::string>("openfoam_bashrc", o.openfoam_bashrc);
 }
 
 }  // namespace
 
-MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source, const fs::path& base_dir) {
+MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
+                       const fs::path& base_dir) {
   const ConfigNode root = ConfigNode::LoadString(yaml_text, source);
   if (!root.IsMap()) root.Fail("a map with sections 'mesh' and 'output'");
   root.ExpectKeys({"mesh", "output"});
@@ -123,7 +130,8 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source, 
     const ConfigNode ship = hull["ship"];
     fs::path p = ship.As<std::string>();
     if (p.is_relative()) p = base_dir / p;
-    if (!fs::exists(p)) ship.Fail("an existing ship file (relative paths start at the case file's folder)");
+    if (!fs::exists(p))
+      ship.Fail("an existing ship file (relative paths start at the case file's folder)");
     c.ship_file = p;
     const ConfigNode sf = ConfigNode::LoadFile(p);
     if (auto principal = sf.Find("principal")) {
@@ -150,7 +158,8 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source, 
   } else {
     flow.Fail("'reynolds', or 'speed' (m/s) with 'viscosity' (m^2/s)");
   }
-  if (c.reynolds < 1e3) flow.Fail(fmt::format("a Reynolds number >= 1000 (got {:.4g})", c.reynolds));
+  if (c.reynolds < 1e3)
+    flow.Fail(fmt::format("a Reynolds number >= 1000 (got {:.4g})", c.reynolds));
   c.y_plus = Number(mesh, "y_plus", c.method == MeshMethod::kSnappy ? 60.0 : 1.0, 0.0);
   c.structured.y_plus = c.snappy.y_plus = c.y_plus;
   c.structured.reynolds = c.snappy.reynolds = c.reynolds;
@@ -159,12 +168,14 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source, 
   if (auto s = mesh.Find("structured")) ParseStructured(*s, c.structured);
   if (auto s = mesh.Find("snappy")) ParseSnappy(*s, c.snappy);
   if (c.method == MeshMethod::kSnappy && c.wigley) {
-    mesh["method"].Fail("'structured' for the Wigley formula (the snappy path needs a ship file with a surface)");
+    mesh["method"].Fail(
+        "'structured' for the Wigley formula (the snappy path needs a ship file with a surface)");
   }
   if (auto f = mesh.Find("family")) {
     f->ExpectKeys({"ratio"});
     c.family_ratio = Number(*f, "ratio", c.family_ratio, 1.0);
-    if (c.family_ratio < 1.1 || c.family_ratio > 4.0) (*f)["ratio"].Fail("a refinement ratio in [1.1, 4]");
+    if (c.family_ratio < 1.1 || c.family_ratio > 4.0)
+      (*f)["ratio"].Fail("a refinement ratio in [1.1, 4]");
   }
 
   const ConfigNode output = root["output"];
@@ -188,24 +199,29 @@ MeshCase LoadMeshCase(const fs::path& path) {
 
 namespace {
 
-std::string GridReport(const MeshCase& c, const Mesh& mesh, const GridSummary& g, const std::string& extra) {
-  std::string r = fmt::format("kelvin mesh: {} (grid {}, {})\n", c.source, g.level,
-                              c.method == MeshMethod::kStructured ? "built-in structured" : "snappyHexMesh");
+std::string GridReport(const MeshCase& c, const Mesh& mesh, const GridSummary& g,
+                       const std::string& extra) {
+  std::string r =
+      fmt::format("kelvin mesh: {} (grid {}, {})\n", c.source, g.level,
+                  c.method == MeshMethod::kStructured ? "built-in structured" : "snappyHexMesh");
   r += g.quality.Report();
   r += fmt::format("negative or zero volumes: {}\n", g.quality.min_volume > 0 ? "none" : "PRESENT");
   r += fmt::format("hull patch volume (below z = 0): {:.9g} m^3\n", g.hull_volume);
-  r += fmt::format("y+ estimate (ITTC-57 C_F at Re = {:.4g}): min {:.3g} mean {:.3g} max {:.3g}\n", c.reynolds,
-                   g.y_plus.min, g.y_plus.mean, g.y_plus.max);
+  r += fmt::format("y+ estimate (ITTC-57 C_F at Re = {:.4g}): min {:.3g} mean {:.3g} max {:.3g}\n",
+                   c.reynolds, g.y_plus.min, g.y_plus.mean, g.y_plus.max);
   r += fmt::format("h = (V/N)^(1/3) = {:.6g} m\nmeshing time {:.3f} s\npatches:", g.h, g.seconds);
-  for (const Patch& p : mesh.patches()) r += fmt::format(" {}({} {})", p.name, PatchKindName(p.kind), p.size);
+  for (const Patch& p : mesh.patches())
+    r += fmt::format(" {}({} {})", p.name, PatchKindName(p.kind), p.size);
   r += "\n" + extra;
   return r;
 }
 
 }  // namespace
 
-std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family, const fs::path& output_override) {
-  if (family < 1 || family > 6) throw ArgumentError(fmt::format("--family {}: expected 1 to 6 grids", family));
+std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
+                                     const fs::path& output_override) {
+  if (family < 1 || family > 6)
+    throw ArgumentError(fmt::format("--family {}: expected 1 to 6 grids", family));
   const fs::path out = output_override.empty() ? c.output_directory : output_override;
   std::unique_ptr<HullSections> sections;
   TriangleSurface surface;
@@ -235,26 +251,31 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family, const fs::pa
       s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       length = sections->length();
       WritePolyMesh(*mesh, s.directory);
-      extra += fmt::format("target first cell height {:.4g} m (y+ {:.3g}); largest girth-line tilt {:.1f} deg\n",
-                           info.first_cell_height, o.y_plus, info.max_line_tilt_deg);
+      extra += fmt::format(
+          "target first cell height {:.4g} m (y+ {:.3g}); largest girth-line tilt {:.1f} deg\n",
+          info.first_cell_height, o.y_plus, info.max_line_tilt_deg);
       if (c.wigley) {
         const double exact = 4.0 / 9.0 * c.wigley_length * c.wigley_beam * c.wigley_draft;
-        extra += fmt::format("Wigley volume 4/9 L B T = {:.9g} m^3; hull patch / exact - 1 = {:.3e}\n", exact,
-                             HullPatchVolume(*mesh) / exact - 1.0);
+        extra +=
+            fmt::format("Wigley volume 4/9 L B T = {:.9g} m^3; hull patch / exact - 1 = {:.3e}\n",
+                        exact, HullPatchVolume(*mesh) / exact - 1.0);
       }
     } else {
       SnappyOptions o = c.snappy;
-      o.base_cells_per_length = std::max(2, static_cast<int>(std::lround(c.snappy.base_cells_per_length / coarsen)));
+      o.base_cells_per_length =
+          std::max(2, static_cast<int>(std::lround(c.snappy.base_cells_per_length / coarsen)));
       SnappyRun run;
       mesh = std::make_unique<Mesh>(RunSnappy(surface, o, s.directory, &run));
       s.seconds = run.seconds_block_mesh + run.seconds_features + run.seconds_snappy;
       s.snappy = run;
       length = LoadHullPlacement(c.ship_file).Lpp;
-      extra += fmt::format("blockMesh {:.2f} s, surfaceFeatureExtract {:.2f} s, snappyHexMesh {:.2f} s\n"
-                           "first layer {:.4g} m (y+ {:.3g}), {} layers requested, expansion {:.3g}\n",
-                           run.seconds_block_mesh, run.seconds_features, run.seconds_snappy,
-                           run.first_layer_thickness, o.y_plus, run.layers, o.expansion_ratio);
-      extra += fmt::format("hull surface volume below z = 0: {:.9g} m^3\n", UnderwaterVolume(surface));
+      extra += fmt::format(
+          "blockMesh {:.2f} s, surfaceFeatureExtract {:.2f} s, snappyHexMesh {:.2f} s\n"
+          "first layer {:.4g} m (y+ {:.3g}), {} layers requested, expansion {:.3g}\n",
+          run.seconds_block_mesh, run.seconds_features, run.seconds_snappy,
+          run.first_layer_thickness, o.y_plus, run.layers, o.expansion_ratio);
+      extra +=
+          fmt::format("hull surface volume below z = 0: {:.9g} m^3\n", UnderwaterVolume(surface));
     }
     s.quality = mesh->Quality();
     s.hull_volume = HullPatchVolume(*mesh);
@@ -266,13 +287,15 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family, const fs::pa
     grids.push_back(std::move(s));
   }
   if (family > 1) {
-    std::string t = fmt::format("# grid family of {} with refinement ratio r = {:.6g} (grid 1 finest)\n", c.source,
-                                c.family_ratio);
+    std::string t =
+        fmt::format("# grid family of {} with refinement ratio r = {:.6g} (grid 1 finest)\n",
+                    c.source, c.family_ratio);
     t += "grid cells h_m r_effective max_non_orthogonality_deg y_plus_mean\n";
     for (std::size_t g = 0; g < grids.size(); ++g) {
       const double r_eff = g == 0 ? 1.0 : grids[g].h / grids[g - 1].h;
-      t += fmt::format("{} {} {:.6g} {:.4f} {:.3f} {:.3g}\n", grids[g].level, grids[g].quality.n_cells, grids[g].h,
-                       r_eff, grids[g].quality.max_non_orthogonality, grids[g].y_plus.mean);
+      t += fmt::format("{} {} {:.6g} {:.4f} {:.3f} {:.3g}\n", grids[g].level,
+                       grids[g].quality.n_cells, grids[g].h, r_eff,
+                       grids[g].quality.max_non_orthogonality, grids[g].y_plus.mean);
     }
     data::WriteFileAtomically(out / "family.txt", t);
   }

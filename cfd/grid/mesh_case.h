@@ -63,12 +63,12 @@ struct GridSummary {
   int level = 1;
   std::filesystem::path directory;
   MeshQuality quality;
-  double hull_volume = 0;    // m^3, enclosed by the hull patch and z = 0
+  double hull_volume = 0;  // m^3, enclosed by the hull patch and z = 0
   YPlusEstimate y_plus;
-  double seconds = 0;        // meshing time (grid generation or OpenFOAM tools)
-  SnappyRun snappy;          // per-tool times of the snappy path
-  double h = 0;              // (V / N)^(1/3), m
-  std::string report;        // the text of quality.txt
+  double seconds = 0;  // meshing time (grid generation or OpenFOAM tools)
+  SnappyRun snappy;    // per-tool times of the snappy path
+  double h = 0;        // (V / N)^(1/3), m
+  std::string report;  // the text of quality.txt
 };
 
 // Builds `family` grids (1 = just the case's grid; grid g is coarsened by

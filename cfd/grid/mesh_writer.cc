@@ -56,11 +56,13 @@ void WritePolyMesh(const Mesh& mesh, const fs::path& case_dir) {
   const fs::path tmp = TemporaryDirFor(target);
   fs::create_directories(tmp);
   try {
-    const std::string note = fmt::format("nPoints:{}  nCells:{}  nFaces:{}  nInternalFaces:{}", mesh.n_points(),
-                                         mesh.n_cells(), mesh.n_faces(), mesh.n_internal_faces());
+    const std::string note =
+        fmt::format("nPoints:{}  nCells:{}  nFaces:{}  nInternalFaces:{}", mesh.n_points(),
+                    mesh.n_cells(), mesh.n_faces(), mesh.n_internal_faces());
     std::string s = Header("vectorField", "points");
     s += fmt::format("{}\n(\n", mesh.n_points());
-    for (const Vector3& p : mesh.points()) s += fmt::format("({:.15g} {:.15g} {:.15g})\n", p.x(), p.y(), p.z());
+    for (const Vector3& p : mesh.points())
+      s += fmt::format("({:.15g} {:.15g} {:.15g})\n", p.x(), p.y(), p.z());
     s += ")\n";
     WriteText(tmp / "points", s);
 
@@ -96,7 +98,8 @@ void WritePolyMesh(const Mesh& mesh, const fs::path& case_dir) {
       if (p.kind == PatchKind::kSymmetry || p.kind == PatchKind::kEmpty) {
         s += fmt::format("        inGroups        List<word> 1({});\n", type);
       }
-      s += fmt::format("        nFaces          {};\n        startFace       {};\n    }}\n", p.size, p.start);
+      s += fmt::format("        nFaces          {};\n        startFace       {};\n    }}\n", p.size,
+                       p.start);
     }
     s += ")\n";
     WriteText(tmp / "boundary", s);
@@ -161,18 +164,23 @@ void WriteVtu(const Mesh& mesh, const fs::path& path) {
   std::string xml;
   std::string blob;
   std::size_t offset = 0;
-  auto array = [&](const char* type, const char* name, int components, const void* data, std::size_t bytes) {
-    xml += fmt::format("        <DataArray type=\"{}\" Name=\"{}\"{} format=\"appended\" offset=\"{}\"/>\n", type, name,
-                       components > 1 ? fmt::format(" NumberOfComponents=\"{}\"", components) : "", offset);
+  auto array = [&](const char* type, const char* name, int components, const void* data,
+                   std::size_t bytes) {
+    xml += fmt::format(
+        "        <DataArray type=\"{}\" Name=\"{}\"{} format=\"appended\" offset=\"{}\"/>\n", type,
+        name, components > 1 ? fmt::format(" NumberOfComponents=\"{}\"", components) : "", offset);
     const std::uint64_t n = bytes;
     blob.append(reinterpret_cast<const char*>(&n), sizeof n);
     blob.append(static_cast<const char*>(data), bytes);
     offset += sizeof n + bytes;
   };
-  xml += "<?xml version=\"1.0\"?>\n"
-         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-         "  <UnstructuredGrid>\n";
-  xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", mesh.n_points(), nc);
+  xml +=
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n"
+      "  <UnstructuredGrid>\n";
+  xml +=
+      fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", mesh.n_points(), nc);
   xml += "      <Points>\n";
   array("Float64", "Points", 3, coords.data(), coords.size() * sizeof(double));
   xml += "      </Points>\n      <Cells>\n";
@@ -184,7 +192,9 @@ void WriteVtu(const Mesh& mesh, const fs::path& path) {
   xml += "      </Cells>\n      <CellData Scalars=\"volume\">\n";
   array("Float64", "volume", 1, volume.data(), volume.size() * sizeof(double));
   array("Float64", "non_orthogonality", 1, cell_angle.data(), cell_angle.size() * sizeof(double));
-  xml += "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
+  xml +=
+      "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n "
+      "  _";
   std::string content = std::move(xml);
   content += blob;
   content += "\n  </AppendedData>\n</VTKFile>\n";

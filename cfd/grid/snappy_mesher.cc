@@ -28,18 +28,22 @@ void RequirePositive(const char* key, double v) {
 
 void RequireRange(const char* key, int v, int lo, int hi) {
   if (v < lo || v > hi) {
-    throw ConfigError(fmt::format("snappy option '{}' = {}: expected an integer in [{}, {}]", key, v, lo, hi));
+    throw ConfigError(
+        fmt::format("snappy option '{}' = {}: expected an integer in [{}, {}]", key, v, lo, hi));
   }
 }
 
 std::string Header(const char* object) {
   return fmt::format(
-      "FoamFile\n{{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n    object      {};\n}}\n"
+      "FoamFile\n{{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n   "
+      " object      {};\n}}\n"
       "// Written by kelvin mesh.\n\n",
       object);
 }
 
-std::string Vec(const Eigen::Vector3d& v) { return fmt::format("({:.9g} {:.9g} {:.9g})", v.x(), v.y(), v.z()); }
+std::string Vec(const Eigen::Vector3d& v) {
+  return fmt::format("({:.9g} {:.9g} {:.9g})", v.x(), v.y(), v.z());
+}
 
 // Domain and boxes in ship axes.
 struct Layout {
@@ -61,13 +65,15 @@ Layout MakeLayout(const TriangleSurface& hull, const SnappyOptions& o) {
   }
   Layout l;
   l.length = hi.x() - lo.x();
-  if (!(l.length > 0)) throw DataFileError(fmt::format("{}: no part of the hull lies below z = 0", hull.source));
+  if (!(l.length > 0))
+    throw DataFileError(fmt::format("{}: no part of the hull lies below z = 0", hull.source));
   const double L = l.length;
   l.min = Eigen::Vector3d(lo.x() - o.downstream * L, -o.half_width * L, -o.depth * L);
   l.max = Eigen::Vector3d(hi.x() + o.upstream * L, o.half_width * L, 0.0);
   if (!(l.min.z() < lo.z()) || !(l.max.y() > hi.y()) || !(l.min.y() < lo.y())) {
-    throw ConfigError(fmt::format("snappy domain (half_width {} L, depth {} L) does not contain the hull of {}",
-                                  o.half_width, o.depth, hull.source));
+    throw ConfigError(
+        fmt::format("snappy domain (half_width {} L, depth {} L) does not contain the hull of {}",
+                    o.half_width, o.depth, hull.source));
   }
   const double h = L / o.base_cells_per_length;
   const Eigen::Vector3d ext = l.max - l.min;
@@ -83,8 +89,8 @@ Layout MakeLayout(const TriangleSurface& hull, const SnappyOptions& o) {
   l.near_max = Eigen::Vector3d(hi.x() + 0.05 * L, hi.y() + 0.05 * L, 0.0);
   l.near_min = l.near_min.cwiseMax(l.min);
   // A point in the water away from every face: upstream, off the centreplane.
-  l.inside = Eigen::Vector3d(hi.x() + 0.5 * o.upstream * L + 0.1234567 * h, 0.4321 * l.max.y() + 0.0123 * h,
-                             0.6173 * l.min.z() + 0.0111 * h);
+  l.inside = Eigen::Vector3d(hi.x() + 0.5 * o.upstream * L + 0.1234567 * h,
+                             0.4321 * l.max.y() + 0.0123 * h, 0.6173 * l.min.z() + 0.0111 * h);
   return l;
 }
 
@@ -97,7 +103,8 @@ std::string Tail(const fs::path& log, int lines) {
   std::vector<std::string> all;
   for (std::string s; std::getline(in, s);) all.push_back(s);
   std::string out;
-  for (std::size_t i = all.size() > static_cast<std::size_t>(lines) ? all.size() - lines : 0; i < all.size(); ++i) {
+  for (std::size_t i = all.size() > static_cast<std::size_t>(lines) ? all.size() - lines : 0;
+       i < all.size(); ++i) {
     out += "    " + all[i] + "\n";
   }
   return out;
@@ -108,18 +115,20 @@ double RunTool(const SnappyOptions& o, const fs::path& case_dir, const std::stri
   const std::string name = tool.substr(0, tool.find(' '));
   const fs::path log = case_dir / ("log." + name);
   if (!fs::exists(o.openfoam_bashrc)) {
-    throw DataFileError(fmt::format("{}: OpenFOAM environment not found (snappy option 'openfoam_bashrc'); install "
-                                    "Debian's openfoam package (tools/setup)",
-                                    o.openfoam_bashrc));
+    throw DataFileError(
+        fmt::format("{}: OpenFOAM environment not found (snappy option 'openfoam_bashrc'); install "
+                    "Debian's openfoam package (tools/setup)",
+                    o.openfoam_bashrc));
   }
-  const std::string cmd = fmt::format("bash -c 'source \"{}\" >/dev/null 2>&1; cd \"{}\" && {} > \"{}\" 2>&1'",
-                                      o.openfoam_bashrc, case_dir.string(), tool, log.string());
+  const std::string cmd =
+      fmt::format("bash -c 'source \"{}\" >/dev/null 2>&1; cd \"{}\" && {} > \"{}\" 2>&1'",
+                  o.openfoam_bashrc, case_dir.string(), tool, log.string());
   const auto t0 = std::chrono::steady_clock::now();
   const int status = std::system(cmd.c_str());
   const double s = Seconds(t0);
   if (status != 0) {
-    throw DataFileError(fmt::format("{} failed (exit status {}); see {}; its last lines:\n{}", name, status,
-                                    log.string(), Tail(log, 12)));
+    throw DataFileError(fmt::format("{} failed (exit status {}); see {}; its last lines:\n{}", name,
+                                    status, log.string(), Tail(log, 12)));
   }
   return s;
 }
@@ -135,19 +144,23 @@ void SnappyOptions::Validate() const {
   RequireRange("hull_level", hull_level, 0, 8);
   RequireRange("wake_level", wake_level, 0, 8);
   if (wake_level > hull_level) {
-    throw ConfigError(fmt::format("snappy option 'wake_level' = {}: expected at most hull_level = {}", wake_level,
-                                  hull_level));
+    throw ConfigError(
+        fmt::format("snappy option 'wake_level' = {}: expected at most hull_level = {}", wake_level,
+                    hull_level));
   }
   RequireRange("layers", layers, kAutoLayers, 50);
   if (!(expansion_ratio >= 1.0 && expansion_ratio <= 3.0)) {
-    throw ConfigError(fmt::format("snappy option 'expansion_ratio' = {}: expected a number in [1, 3]", expansion_ratio));
+    throw ConfigError(fmt::format(
+        "snappy option 'expansion_ratio' = {}: expected a number in [1, 3]", expansion_ratio));
   }
   RequirePositive("y_plus", y_plus);
   if (!(reynolds >= 1e3) || !std::isfinite(reynolds)) {
-    throw ConfigError(fmt::format("snappy option 'reynolds' = {}: expected a finite number >= 1000", reynolds));
+    throw ConfigError(
+        fmt::format("snappy option 'reynolds' = {}: expected a finite number >= 1000", reynolds));
   }
   if (!(feature_angle > 0 && feature_angle < 180)) {
-    throw ConfigError(fmt::format("snappy option 'feature_angle' = {}: expected degrees in (0, 180)", feature_angle));
+    throw ConfigError(fmt::format(
+        "snappy option 'feature_angle' = {}: expected degrees in (0, 180)", feature_angle));
   }
 }
 
@@ -158,29 +171,34 @@ int SnappyLayerCount(const SnappyOptions& o, double length) {
   const double ratio = 0.5 * surface_cell / first;
   if (ratio <= 1.0) return 1;
   if (o.expansion_ratio <= 1.0 + 1e-9) return std::clamp(static_cast<int>(std::ceil(ratio)), 1, 50);
-  return std::clamp(static_cast<int>(std::ceil(std::log(ratio) / std::log(o.expansion_ratio))) + 1, 1, 50);
+  return std::clamp(static_cast<int>(std::ceil(std::log(ratio) / std::log(o.expansion_ratio))) + 1,
+                    1, 50);
 }
 
-void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o, const fs::path& case_dir) {
+void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o,
+                     const fs::path& case_dir) {
   o.Validate();
   const Layout l = MakeLayout(hull, o);
   fs::create_directories(case_dir / "system");
   fs::create_directories(case_dir / "constant" / "triSurface");
-  if (fs::exists(case_dir / "constant" / "polyMesh")) fs::remove_all(case_dir / "constant" / "polyMesh");
+  if (fs::exists(case_dir / "constant" / "polyMesh"))
+    fs::remove_all(case_dir / "constant" / "polyMesh");
   WriteStl(hull, case_dir / "constant" / "triSurface" / "hull.stl");
   using data::WriteFileAtomically;
 
-  WriteFileAtomically(case_dir / "system" / "controlDict",
-                      Header("controlDict") +
-                          "application snappyHexMesh;\nstartFrom startTime;\nstartTime 0;\nstopAt endTime;\n"
-                          "endTime 1;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 1;\nwriteFormat ascii;\n"
-                          "writePrecision 12;\nwriteCompression off;\ntimeFormat general;\ntimePrecision 6;\n"
-                          "runTimeModifiable false;\n");
-  WriteFileAtomically(case_dir / "system" / "fvSchemes",
-                      Header("fvSchemes") +
-                          "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
-                          "divSchemes { default none; }\nlaplacianSchemes { default Gauss linear corrected; }\n"
-                          "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n");
+  WriteFileAtomically(
+      case_dir / "system" / "controlDict",
+      Header("controlDict") +
+          "application snappyHexMesh;\nstartFrom startTime;\nstartTime 0;\nstopAt endTime;\n"
+          "endTime 1;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval 1;\nwriteFormat ascii;\n"
+          "writePrecision 12;\nwriteCompression off;\ntimeFormat general;\ntimePrecision 6;\n"
+          "runTimeModifiable false;\n");
+  WriteFileAtomically(
+      case_dir / "system" / "fvSchemes",
+      Header("fvSchemes") +
+          "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
+          "divSchemes { default none; }\nlaplacianSchemes { default Gauss linear corrected; }\n"
+          "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n");
   WriteFileAtomically(case_dir / "system" / "fvSolution", Header("fvSolution"));
 
   // Background box: its top is the calm waterline z = 0.
@@ -192,7 +210,8 @@ void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o, const 
                                 {b.x(), b.y(), b.z()}, {a.x(), b.y(), b.z()}};
   for (const auto& p : v) bm += "    " + Vec(p) + "\n";
   bm += fmt::format(
-      ");\nblocks\n(\n    hex (0 1 2 3 4 5 6 7) ({} {} {}) simpleGrading (1 1 1)\n);\nedges ();\nboundary\n(\n"
+      ");\nblocks\n(\n    hex (0 1 2 3 4 5 6 7) ({} {} {}) simpleGrading (1 1 1)\n);\nedges "
+      "();\nboundary\n(\n"
       "    freeSurface {{ type patch; faces ((4 5 6 7)); }}\n"
       "    inlet       {{ type patch; faces ((1 2 6 5)); }}\n"
       "    outlet      {{ type patch; faces ((0 4 7 3)); }}\n"
@@ -201,53 +220,68 @@ void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o, const 
       l.cells[0], l.cells[1], l.cells[2]);
   WriteFileAtomically(case_dir / "system" / "blockMeshDict", bm);
 
-  WriteFileAtomically(case_dir / "system" / "surfaceFeatureExtractDict",
-                      Header("surfaceFeatureExtractDict") +
-                          fmt::format("hull.stl\n{{\n    extractionMethod extractFromSurface;\n"
-                                      "    extractFromSurfaceCoeffs {{ includedAngle {:.6g}; }}\n"
-                                      "    subsetFeatures {{ nonManifoldEdges yes; openEdges yes; }}\n"
-                                      "    writeObj no;\n}}\n",
-                                      180.0 - o.feature_angle));
+  WriteFileAtomically(
+      case_dir / "system" / "surfaceFeatureExtractDict",
+      Header("surfaceFeatureExtractDict") +
+          fmt::format("hull.stl\n{{\n    extractionMethod extractFromSurface;\n"
+                      "    extractFromSurfaceCoeffs {{ includedAngle {:.6g}; }}\n"
+                      "    subsetFeatures {{ nonManifoldEdges yes; openEdges yes; }}\n"
+                      "    writeObj no;\n}}\n",
+                      180.0 - o.feature_angle));
 
   const double first = FirstCellHeight(o.y_plus, o.reynolds, l.length);
   const int near_level = (o.hull_level + o.wake_level + 1) / 2;
   const int layers = SnappyLayerCount(o, l.length);
   std::string s = Header("snappyHexMeshDict");
-  s += fmt::format("castellatedMesh true;\nsnap true;\naddLayers {};\n\n", layers > 0 ? "true" : "false");
+  s += fmt::format("castellatedMesh true;\nsnap true;\naddLayers {};\n\n",
+                   layers > 0 ? "true" : "false");
   s += "geometry\n{\n    hull.stl { type triSurfaceMesh; name hull; }\n";
-  s += fmt::format("    nearHull {{ type searchableBox; min {}; max {}; }}\n", Vec(l.near_min), Vec(l.near_max));
-  s += fmt::format("    kelvinWake {{ type searchableBox; min {}; max {}; }}\n}}\n\n", Vec(l.wake_min), Vec(l.wake_max));
+  s += fmt::format("    nearHull {{ type searchableBox; min {}; max {}; }}\n", Vec(l.near_min),
+                   Vec(l.near_max));
+  s += fmt::format("    kelvinWake {{ type searchableBox; min {}; max {}; }}\n}}\n\n",
+                   Vec(l.wake_min), Vec(l.wake_max));
   s += fmt::format(
       "castellatedMeshControls\n{{\n    maxLocalCells 2000000;\n    maxGlobalCells 20000000;\n"
       "    minRefinementCells 0;\n    maxLoadUnbalance 0.10;\n    nCellsBetweenLevels 3;\n"
       "    features ( {{ file \"hull.eMesh\"; level {}; }} );\n"
-      "    refinementSurfaces\n    {{\n        hull {{ level ({} {}); patchInfo {{ type wall; }} }}\n    }}\n"
+      "    refinementSurfaces\n    {{\n        hull {{ level ({} {}); patchInfo {{ type wall; }} "
+      "}}\n    }}\n"
       "    resolveFeatureAngle {:.6g};\n"
       "    refinementRegions\n    {{\n"
       "        nearHull {{ mode inside; levels ((1e15 {})); }}\n"
       "        kelvinWake {{ mode inside; levels ((1e15 {})); }}\n    }}\n"
       "    locationInMesh {};\n    allowFreeStandingZoneFaces true;\n}}\n\n",
-      o.hull_level, o.hull_level, o.hull_level, o.feature_angle, near_level, o.wake_level, Vec(l.inside));
-  s += "snapControls\n{\n    nSmoothPatch 3;\n    tolerance 2.0;\n    nSolveIter 50;\n    nRelaxIter 5;\n"
+      o.hull_level, o.hull_level, o.hull_level, o.feature_angle, near_level, o.wake_level,
+      Vec(l.inside));
+  s += "snapControls\n{\n    nSmoothPatch 3;\n    tolerance 2.0;\n    nSolveIter 50;\n    "
+       "nRelaxIter 5;\n"
        "    nFeatureSnapIter 10;\n    implicitFeatureSnap false;\n    explicitFeatureSnap true;\n"
        "    multiRegionFeatureSnap false;\n}\n\n";
   s += fmt::format(
-      "addLayersControls\n{{\n    relativeSizes false;\n    layers {{ hull {{ nSurfaceLayers {}; }} }}\n"
-      "    firstLayerThickness {:.6g};\n    expansionRatio {:.6g};\n    minThickness {:.6g};\n    nGrow 0;\n"
-      "    featureAngle 130;\n    slipFeatureAngle 30;\n    nRelaxIter 5;\n    nSmoothSurfaceNormals 1;\n"
+      "addLayersControls\n{{\n    relativeSizes false;\n    layers {{ hull {{ nSurfaceLayers {}; "
+      "}} }}\n"
+      "    firstLayerThickness {:.6g};\n    expansionRatio {:.6g};\n    minThickness {:.6g};\n    "
+      "nGrow 0;\n"
+      "    featureAngle 130;\n    slipFeatureAngle 30;\n    nRelaxIter 5;\n    "
+      "nSmoothSurfaceNormals 1;\n"
       "    nSmoothNormals 3;\n    nSmoothThickness 10;\n    maxFaceThicknessRatio 0.5;\n"
-      "    maxThicknessToMedialRatio 0.3;\n    minMedialAxisAngle 90;\n    nBufferCellsNoExtrude 0;\n"
+      "    maxThicknessToMedialRatio 0.3;\n    minMedialAxisAngle 90;\n    nBufferCellsNoExtrude "
+      "0;\n"
       "    nLayerIter 50;\n    nRelaxedIter 20;\n}}\n\n",
       std::max(layers, 1), first, o.expansion_ratio, 0.1 * first);
-  s += "meshQualityControls\n{\n    maxNonOrtho 65;\n    maxBoundarySkewness 20;\n    maxInternalSkewness 4;\n"
-       "    maxConcave 80;\n    minVol 1e-13;\n    minTetQuality 1e-15;\n    minArea -1;\n    minTwist 0.02;\n"
-       "    minDeterminant 0.001;\n    minFaceWeight 0.05;\n    minVolRatio 0.01;\n    minTriangleTwist -1;\n"
+  s += "meshQualityControls\n{\n    maxNonOrtho 65;\n    maxBoundarySkewness 20;\n    "
+       "maxInternalSkewness 4;\n"
+       "    maxConcave 80;\n    minVol 1e-13;\n    minTetQuality 1e-15;\n    minArea -1;\n    "
+       "minTwist 0.02;\n"
+       "    minDeterminant 0.001;\n    minFaceWeight 0.05;\n    minVolRatio 0.01;\n    "
+       "minTriangleTwist -1;\n"
        "    nSmoothScale 4;\n    errorReduction 0.75;\n    relaxed { maxNonOrtho 75; }\n}\n\n"
        "mergeTolerance 1e-6;\n";
   WriteFileAtomically(case_dir / "system" / "snappyHexMeshDict", s);
 }
 
-Mesh RunSnappy(const TriangleSurface& hull, const SnappyOptions& o, const fs::path& case_dir, SnappyRun* run) {
+Mesh RunSnappy(const TriangleSurface& hull, const SnappyOptions& o, const fs::path& case_dir,
+               SnappyRun* run) {
   WriteSnappyCase(hull, o, case_dir);
   SnappyRun r;
   r.seconds_block_mesh = RunTool(o, case_dir, "blockMesh");

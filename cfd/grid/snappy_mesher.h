@@ -60,12 +60,13 @@ int SnappyLayerCount(const SnappyOptions& options, double length);
 // Writes the case into `case_dir` (created; an existing polyMesh there is
 // replaced): constant/triSurface/hull.stl and the system dictionaries. The
 // hull is in ship axes (x forward from the aft end, z up from the waterline).
-void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& options, const std::filesystem::path& case_dir);
+void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& options,
+                     const std::filesystem::path& case_dir);
 
 // Writes the case, runs blockMesh, surfaceFeatureExtract and snappyHexMesh
 // (logs in case_dir/log.*) and reads the polyMesh. Throws DataFileError
 // naming the tool, its log and the log's last lines when a tool fails.
-Mesh RunSnappy(const TriangleSurface& hull, const SnappyOptions& options, const std::filesystem::path& case_dir,
-               SnappyRun* run = nullptr);
+Mesh RunSnappy(const TriangleSurface& hull, const SnappyOptions& options,
+               const std::filesystem::path& case_dir, SnappyRun* run = nullptr);
 
 }  // namespace kelvin::cfd

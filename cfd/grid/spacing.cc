@@ -11,9 +11,10 @@ namespace kelvin::cfd {
 
 double GeometricRatio(int n, double length, double h1) {
   if (n < 1 || !(h1 > 0) || !(length > 0)) {
-    throw ConfigError(fmt::format("geometric spacing: need n >= 1, first spacing > 0 and length > 0; got n = {}, "
-                                  "first spacing = {} m, length = {} m",
-                                  n, h1, length));
+    throw ConfigError(
+        fmt::format("geometric spacing: need n >= 1, first spacing > 0 and length > 0; got n = {}, "
+                    "first spacing = {} m, length = {} m",
+                    n, h1, length));
   }
   // Sum of the spacings for ratio q; monotone increasing in q.
   auto total = [&](double q) {
@@ -23,10 +24,14 @@ double GeometricRatio(int n, double length, double h1) {
   double lo = 1e-6, hi = 1.0;
   while (total(hi) < length) {
     hi *= 2.0;
-    if (hi > 1e6) throw ConfigError(fmt::format("geometric spacing: first spacing {} m is too small to cover {} m in {} cells", h1, length, n));
+    if (hi > 1e6)
+      throw ConfigError(fmt::format(
+          "geometric spacing: first spacing {} m is too small to cover {} m in {} cells", h1,
+          length, n));
   }
   if (total(lo) > length) {
-    throw ConfigError(fmt::format("geometric spacing: first spacing {} m is larger than the length {} m", h1, length));
+    throw ConfigError(fmt::format(
+        "geometric spacing: first spacing {} m is larger than the length {} m", h1, length));
   }
   for (int it = 0; it < 200; ++it) {
     const double mid = 0.5 * (lo + hi);
@@ -52,9 +57,10 @@ std::vector<double> GeometricNodes(int n, double length, double h1) {
 
 std::vector<double> TwoSidedNodes(int n, double length, double h0, double h1) {
   if (n < 1 || !(h0 > 0) || !(h1 > 0) || !(length > 0)) {
-    throw ConfigError(fmt::format("two-sided spacing: need n >= 1, end spacings > 0 and length > 0; got n = {}, "
-                                  "spacings {} m and {} m, length = {} m",
-                                  n, h0, h1, length));
+    throw ConfigError(
+        fmt::format("two-sided spacing: need n >= 1, end spacings > 0 and length > 0; got n = {}, "
+                    "spacings {} m and {} m, length = {} m",
+                    n, h0, h1, length));
   }
   const double pi = std::numbers::pi;
   // Mean spacing length / n = (h0 + h1) / 2 + 2 c / pi.
@@ -64,8 +70,9 @@ std::vector<double> TwoSidedNodes(int n, double length, double h0, double h1) {
   for (int k = 0; k <= 200; ++k) {
     const double xi = k / 200.0;
     if (h0 + (h1 - h0) * xi + c * std::sin(pi * xi) <= 0.05 * std::min(h0, h1)) {
-      throw ConfigError(fmt::format("two-sided spacing: end spacings {} m and {} m are too large for {} cells over {} m",
-                                    h0, h1, n, length));
+      throw ConfigError(fmt::format(
+          "two-sided spacing: end spacings {} m and {} m are too large for {} cells over {} m", h0,
+          h1, n, length));
     }
   }
   std::vector<double> s(n + 1);

@@ -26,7 +26,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
 
-double Since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double Since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 void ReplaceSection(const std::string& file, const std::string& section) {
   const std::string begin = "<!-- mesh:begin -->", end = "<!-- mesh:end -->";
@@ -54,8 +56,10 @@ int main(int argc, char** argv) {
   std::string write_to;
   fs::path source = fs::path(__FILE__).parent_path().parent_path().parent_path();
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--write") && i + 1 < argc) write_to = argv[++i];
-    else if (!std::strcmp(argv[i], "--source") && i + 1 < argc) source = argv[++i];
+    if (!std::strcmp(argv[i], "--write") && i + 1 < argc)
+      write_to = argv[++i];
+    else if (!std::strcmp(argv[i], "--source") && i + 1 < argc)
+      source = argv[++i];
   }
   using namespace kelvin::cfd;
   // Built-in generator: Wigley L/B = 10, B/T = 1.6, Re 5e6, y+ 1, ~300k cells.
@@ -101,20 +105,29 @@ int main(int argc, char** argv) {
   const double rate_builtin = wq.n_cells / t_gen;
   const double rate_snappy = g.quality.n_cells / g.seconds;
   std::string md = "## Meshing (issue 5)\n\n";
-  md += "Produced by `build/release/tools/bench/mesh_bench --write BENCHMARKS.md` (one run; built-in generator median "
-        "of 3; OpenFOAM v1912 tools from Debian, serial).\n\n";
+  md +=
+      "Produced by `build/release/tools/bench/mesh_bench --write BENCHMARKS.md` (one run; built-in "
+      "generator median "
+      "of 3; OpenFOAM v1912 tools from Debian, serial).\n\n";
   md += "| grid | cells | time (s) | cells/s | max non-orthogonality (deg) | max skewness |\n";
   md += "| --- | ---: | ---: | ---: | ---: | ---: |\n";
-  md += fmt::format("| Wigley, built-in hull-fitted generator (y+ 1 at Re 5e6) | {} | {:.3f} | {:.3g} | {:.1f} | {:.2f} |\n",
-                    wq.n_cells, t_gen, rate_builtin, wq.max_non_orthogonality, wq.max_skewness);
-  md += fmt::format("| same, including writing the ASCII polyMesh | {} | {:.3f} | {:.3g} | | |\n", wq.n_cells,
-                    t_gen_write, wq.n_cells / t_gen_write);
-  md += fmt::format("| DTC, snappyHexMesh path (blockMesh {:.2f} s + surfaceFeatureExtract {:.2f} s + snappyHexMesh {:.2f} s, hull level {}) | {} | {:.2f} | {:.3g} | {:.1f} | {:.2f} |\n",
-                    g.snappy.seconds_block_mesh, g.snappy.seconds_features, g.snappy.seconds_snappy, c.snappy.hull_level, g.quality.n_cells, g.seconds, rate_snappy,
-                    g.quality.max_non_orthogonality, g.quality.max_skewness);
-  md += fmt::format("\nRatio built-in / snappyHexMesh: {:.0f}x the cells per second. The whole `kelvin mesh` run for the DTC "
-                    "(writing the case, the tools, reading the polyMesh back, quality report) took {:.1f} s.\n\n",
-                    rate_builtin / rate_snappy, t_snappy_total);
+  md += fmt::format(
+      "| Wigley, built-in hull-fitted generator (y+ 1 at Re 5e6) | {} | {:.3f} | {:.3g} | {:.1f} | "
+      "{:.2f} |\n",
+      wq.n_cells, t_gen, rate_builtin, wq.max_non_orthogonality, wq.max_skewness);
+  md += fmt::format("| same, including writing the ASCII polyMesh | {} | {:.3f} | {:.3g} | | |\n",
+                    wq.n_cells, t_gen_write, wq.n_cells / t_gen_write);
+  md += fmt::format(
+      "| DTC, snappyHexMesh path (blockMesh {:.2f} s + surfaceFeatureExtract {:.2f} s + "
+      "snappyHexMesh {:.2f} s, hull level {}) | {} | {:.2f} | {:.3g} | {:.1f} | {:.2f} |\n",
+      g.snappy.seconds_block_mesh, g.snappy.seconds_features, g.snappy.seconds_snappy,
+      c.snappy.hull_level, g.quality.n_cells, g.seconds, rate_snappy,
+      g.quality.max_non_orthogonality, g.quality.max_skewness);
+  md += fmt::format(
+      "\nRatio built-in / snappyHexMesh: {:.0f}x the cells per second. The whole `kelvin mesh` run "
+      "for the DTC "
+      "(writing the case, the tools, reading the polyMesh back, quality report) took {:.1f} s.\n\n",
+      rate_builtin / rate_snappy, t_snappy_total);
   fmt::print("{}", md);
   if (!write_to.empty()) ReplaceSection(write_to, md);
   return 0;

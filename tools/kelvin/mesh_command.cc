@@ -36,12 +36,14 @@ void RunMesh(const MeshArgs& a) {
 
 Command AddMeshCommand(CLI::App& app) {
   auto args = std::make_shared<MeshArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "mesh", "Build the double-body grid of a mesh case (built-in hull-fitted generator or snappyHexMesh)");
+  CLI::App* cmd = app.add_subcommand("mesh",
+                                     "Build the double-body grid of a mesh case (built-in "
+                                     "hull-fitted generator or snappyHexMesh)");
   cmd->add_option("case", args->case_file, "Mesh case file (YAML with sections mesh and output)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--family", args->family, "Number of grids with the case's refinement ratio (grid 1 finest)")
+  cmd->add_option("--family", args->family,
+                  "Number of grids with the case's refinement ratio (grid 1 finest)")
       ->check(CLI::Range(1, 6))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output directory (overrides output.directory)");

@@ -1,15 +1,16 @@
 // Mesh case files: the shipped examples parse, every bad input gives one
 // clear message (file, line, key, value, expected), and a grid family is
 // written as polyMesh + .vtu + quality report and read back by ReadPolyMesh.
+#include "cfd/grid/mesh_case.h"
+
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <fmt/format.h>
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "cfd/grid/mesh_case.h"
 #include "cfd/mesh/poly_mesh_reader.h"
 #include "data/schema/errors.h"
 #include "tests/test_utilities/test_utilities.h"
@@ -45,7 +46,9 @@ output:
   directory: out
 )";
 
-MeshCase Parse(const std::string& text) { return ParseMeshCase(text, "case.yaml", SourceDir() / "data" / "cases" / "mesh"); }
+MeshCase Parse(const std::string& text) {
+  return ParseMeshCase(text, "case.yaml", SourceDir() / "data" / "cases" / "mesh");
+}
 
 // kWigley with the line containing `from` replaced by `to`.
 std::string Edit(const std::string& from, const std::string& to) {
@@ -72,41 +75,57 @@ TEST(MeshCaseTest, ShippedCaseFilesParse) {
 
 TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
   EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  y_pluss: 1.0")); }),
-              AllOf(HasSubstr("case.yaml:7: unknown key 'mesh.y_pluss'"), HasSubstr("valid keys: method, hull"),
-                    HasSubstr("(did you mean 'y_plus'?)")));
-  EXPECT_THAT(ErrorOf([] { Parse(Edit("method: structured", "method: delaunay")); }),
-              HasSubstr("case.yaml:2: key 'mesh.method' = 'delaunay': expected 'structured' or 'snappy'"));
-  EXPECT_THAT(ErrorOf([] { Parse(Edit("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}",
-                                      "    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}\n    ship: a.yaml")); }),
-              HasSubstr("key 'mesh.hull' = (a map): expected exactly one of 'wigley' (the formula) or 'ship'"));
+              AllOf(HasSubstr("case.yaml:7: unknown key 'mesh.y_pluss'"),
+                    HasSubstr("valid keys: method, hull"), HasSubstr("(did you mean 'y_plus'?)")));
+  EXPECT_THAT(
+      ErrorOf([] { Parse(Edit("method: structured", "method: delaunay")); }),
+      HasSubstr("case.yaml:2: key 'mesh.method' = 'delaunay': expected 'structured' or 'snappy'"));
+  EXPECT_THAT(
+      ErrorOf([] {
+        Parse(Edit("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}",
+                   "    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}\n    ship: a.yaml"));
+      }),
+      HasSubstr(
+          "key 'mesh.hull' = (a map): expected exactly one of 'wigley' (the formula) or 'ship'"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("draft: 0.15625", "draft: -0.1")); }),
               HasSubstr("key 'mesh.hull.wigley.draft' = '-0.1': expected a positive number"));
-  EXPECT_THAT(ErrorOf([] { Parse(Edit("    reynolds: 5.0e6", "    reynolds: 5.0e6\n    speed: 2.0")); }),
-              HasSubstr("key 'mesh.flow' = (a map): expected either 'reynolds' or 'speed'"));
-  EXPECT_THAT(ErrorOf([] { Parse(Edit("    reynolds: 5.0e6", "    speed: 2.0")); }),
-              HasSubstr("key 'mesh.flow' = (a map): expected 'viscosity' (m^2/s): the hull has no ship file"));
+  EXPECT_THAT(
+      ErrorOf([] { Parse(Edit("    reynolds: 5.0e6", "    reynolds: 5.0e6\n    speed: 2.0")); }),
+      HasSubstr("key 'mesh.flow' = (a map): expected either 'reynolds' or 'speed'"));
+  EXPECT_THAT(
+      ErrorOf([] { Parse(Edit("    reynolds: 5.0e6", "    speed: 2.0")); }),
+      HasSubstr(
+          "key 'mesh.flow' = (a map): expected 'viscosity' (m^2/s): the hull has no ship file"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("    reynolds: 5.0e6", "    reynolds: 50")); }),
               HasSubstr("key 'mesh.flow.reynolds' = '50'"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  y_plus: 0")); }),
               HasSubstr("key 'mesh.y_plus' = '0': expected a finite number > 0"));
-  EXPECT_THAT(ErrorOf([] { Parse(Edit("cells_hull: 24", "cells_hull: 1")); }),
-              HasSubstr("key 'mesh.structured.cells_hull' = '1': expected an integer in [2, 100000]"));
+  EXPECT_THAT(
+      ErrorOf([] { Parse(Edit("cells_hull: 24", "cells_hull: 1")); }),
+      HasSubstr("key 'mesh.structured.cells_hull' = '1': expected an integer in [2, 100000]"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("cells_hull: 24", "cells_hull: many")); }),
               HasSubstr("key 'mesh.structured.cells_hull' = 'many'"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("cells_hull: 24", "cels_hull: 24")); }),
-              AllOf(HasSubstr("unknown key 'mesh.structured.cels_hull'"), HasSubstr("did you mean 'cells_hull'")));
-  EXPECT_THAT(ErrorOf([] { Parse(Edit("ratio: 1.41421356", "ratio: 1.05")); }),
-              HasSubstr("key 'mesh.family.ratio' = '1.05': expected a refinement ratio in [1.1, 4]"));
+              AllOf(HasSubstr("unknown key 'mesh.structured.cels_hull'"),
+                    HasSubstr("did you mean 'cells_hull'")));
+  EXPECT_THAT(
+      ErrorOf([] { Parse(Edit("ratio: 1.41421356", "ratio: 1.05")); }),
+      HasSubstr("key 'mesh.family.ratio' = '1.05': expected a refinement ratio in [1.1, 4]"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("  directory: out", "  folder: out")); }),
               HasSubstr("unknown key 'output.folder'; valid keys: directory, vtu"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("method: structured", "method: snappy")); }),
               HasSubstr("expected 'structured' for the Wigley formula"));
-  EXPECT_THAT(ErrorOf([] { Parse(Edit("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}", "    ship: nowhere.yaml")); }),
+  EXPECT_THAT(ErrorOf([] {
+                Parse(Edit("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}",
+                           "    ship: nowhere.yaml"));
+              }),
               HasSubstr("key 'mesh.hull.ship' = 'nowhere.yaml': expected an existing ship file"));
-  EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  snappy: {hull_level: 2, wake_level: 3}")); }),
-              HasSubstr("key 'mesh.snappy.wake_level' = '3': expected at most hull_level = 2"));
-  EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  snappy: {layers: -3}")); }),
-              HasSubstr("key 'mesh.snappy.layers' = '-3': expected 'auto' or an integer in [0, 50]"));
+  EXPECT_THAT(
+      ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  snappy: {hull_level: 2, wake_level: 3}")); }),
+      HasSubstr("key 'mesh.snappy.wake_level' = '3': expected at most hull_level = 2"));
+  EXPECT_THAT(
+      ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  snappy: {layers: -3}")); }),
+      HasSubstr("key 'mesh.snappy.layers' = '-3': expected 'auto' or an integer in [0, 50]"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  domain: {depth: 0}")); }),
               HasSubstr("key 'mesh.domain.depth' = '0': expected a finite number > 0"));
   EXPECT_THAT(ErrorOf([] { Parse("mesh: [1, 2\n"); }), HasSubstr("case.yaml:2: YAML syntax error"));
@@ -133,8 +152,9 @@ TEST(MeshCaseTest, FamilyIsWrittenAndReadBack) {
     std::ifstream in(gdir / "quality.txt");
     std::stringstream text;
     text << in.rdbuf();
-    EXPECT_THAT(text.str(), AllOf(HasSubstr("non-orthogonality max"), HasSubstr("y+ estimate"),
-                                  HasSubstr("negative or zero volumes: none"), HasSubstr("aspect ratio max")));
+    EXPECT_THAT(text.str(),
+                AllOf(HasSubstr("non-orthogonality max"), HasSubstr("y+ estimate"),
+                      HasSubstr("negative or zero volumes: none"), HasSubstr("aspect ratio max")));
     std::ifstream vtu(gdir / "mesh.vtu");
     std::string first;
     std::getline(vtu, first);
@@ -143,7 +163,8 @@ TEST(MeshCaseTest, FamilyIsWrittenAndReadBack) {
   EXPECT_GT(grids[0].quality.n_cells, grids[1].quality.n_cells);
   EXPECT_GT(grids[1].quality.n_cells, grids[2].quality.n_cells);
   EXPECT_TRUE(std::filesystem::exists(dir / "family.txt"));
-  EXPECT_THAT(ErrorOf([&] { RunMeshCase(c, 7, dir.path()); }), HasSubstr("--family 7: expected 1 to 6 grids"));
+  EXPECT_THAT(ErrorOf([&] { RunMeshCase(c, 7, dir.path()); }),
+              HasSubstr("--family 7: expected 1 to 6 grids"));
 }
 
 }  // namespace

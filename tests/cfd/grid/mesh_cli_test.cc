@@ -51,7 +51,8 @@ TEST(MeshCliTest, BadCaseFileExitsWithOneMessage) {
   Write(dir / "bad.yaml", text);
   const auto r = RunCommand(Kelvin() + " mesh " + (dir / "bad.yaml").string());
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("bad.yaml:8: unknown key 'output.vtk'; valid keys: directory, vtu"));
+  EXPECT_THAT(r.output,
+              HasSubstr("bad.yaml:8: unknown key 'output.vtk'; valid keys: directory, vtu"));
   EXPECT_FALSE(std::filesystem::exists(dir / "grids"));
   const auto f = RunCommand(Kelvin() + " mesh " + (dir / "bad.yaml").string() + " --family 9");
   EXPECT_EQ(f.exit_code, 2) << f.output;

@@ -2,9 +2,11 @@
 // CI-sized DTC grid from Debian's OpenFOAM with its quality report, and the
 // errors when OpenFOAM is missing. KELVIN_SNAPPY_FULL=1 runs the benchmark
 // grid of data/cases/mesh/dtc_snappy.yaml instead (ctest label slow).
+#include "cfd/grid/snappy_mesher.h"
+
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <fmt/format.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -13,7 +15,6 @@
 #include "cfd/geometry/hydrostatics.h"
 #include "cfd/grid/hull_grid.h"
 #include "cfd/grid/mesh_case.h"
-#include "cfd/grid/snappy_mesher.h"
 #include "cfd/grid/spacing.h"
 #include "data/schema/errors.h"
 #include "tests/test_utilities/test_utilities.h"
@@ -44,9 +45,11 @@ TEST(SnappyMesherTest, DictionariesDescribeTheDoubleBodyDomain) {
   // Domain: 1 L ahead, 2 L behind, +-1 L wide, 1 L deep, top on z = 0.
   EXPECT_THAT(block, HasSubstr("(-4 -2 -2)"));
   EXPECT_THAT(block, HasSubstr("(4 2 0)"));
-  for (const char* patch : {"freeSurface", "inlet", "outlet", "side", "bottom"}) EXPECT_THAT(block, HasSubstr(patch));
+  for (const char* patch : {"freeSurface", "inlet", "outlet", "side", "bottom"})
+    EXPECT_THAT(block, HasSubstr(patch));
   const std::string snappy = Slurp(dir / "system/snappyHexMeshDict");
-  EXPECT_THAT(snappy, HasSubstr(fmt::format("firstLayerThickness {:.6g};", FirstCellHeight(30, 4e6, 2.0))));
+  EXPECT_THAT(snappy,
+              HasSubstr(fmt::format("firstLayerThickness {:.6g};", FirstCellHeight(30, 4e6, 2.0))));
   EXPECT_THAT(snappy, HasSubstr("nSurfaceLayers 5;"));
   EXPECT_THAT(snappy, HasSubstr("kelvinWake"));
   EXPECT_THAT(snappy, HasSubstr("relativeSizes false;"));
@@ -69,12 +72,14 @@ TEST(SnappyMesherTest, MissingOpenFoamIsOneClearError) {
     RunSnappy(hull, o, dir.path());
     FAIL() << "no error";
   } catch (const DataFileError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/openfoam/bashrc: OpenFOAM environment not found"));
+    EXPECT_THAT(e.what(),
+                HasSubstr("/nonexistent/openfoam/bashrc: OpenFOAM environment not found"));
   }
 }
 
 TEST(SnappyMesherTest, DtcGridQualityReport) {
-  if (!std::filesystem::exists("/usr/share/openfoam/etc/bashrc")) GTEST_SKIP() << "Debian openfoam not installed";
+  if (!std::filesystem::exists("/usr/share/openfoam/etc/bashrc"))
+    GTEST_SKIP() << "Debian openfoam not installed";
   const bool full = std::getenv("KELVIN_SNAPPY_FULL") != nullptr;
   MeshCase c = LoadMeshCase(SourceDir() / "data/cases/mesh/dtc_snappy.yaml");
   if (!full) {
@@ -103,10 +108,13 @@ TEST(SnappyMesherTest, DtcGridQualityReport) {
   const TriangleSurface hull = LoadHull(placement);
   const double stl = UnderwaterVolume(hull);
   const Hydrostatics hs = ComputeHydrostatics(hull, placement.Lpp, placement.B, placement.T);
-  const double cell = placement.Lpp / c.snappy.base_cells_per_length / std::pow(2.0, c.snappy.hull_level);
+  const double cell =
+      placement.Lpp / c.snappy.base_cells_per_length / std::pow(2.0, c.snappy.hull_level);
   const double offset = std::abs(g.hull_volume - stl) / hs.wetted_area;
-  fmt::print("hull patch volume / STL volume = {:.5f}; mean offset {:.3g} mm = {:.3g} of the {:.3g} mm hull cells\n",
-             g.hull_volume / stl, 1e3 * offset, offset / cell, 1e3 * cell);
+  fmt::print(
+      "hull patch volume / STL volume = {:.5f}; mean offset {:.3g} mm = {:.3g} of the {:.3g} mm "
+      "hull cells\n",
+      g.hull_volume / stl, 1e3 * offset, offset / cell, 1e3 * cell);
   EXPECT_LT(offset, 0.05 * cell);
   // The report carries the figures the issue asks for.
   EXPECT_THAT(g.report, HasSubstr("non-orthogonality max"));

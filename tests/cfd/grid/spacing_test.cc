@@ -1,10 +1,11 @@
 // Node distributions and the y+ wall-spacing estimate.
+#include "cfd/grid/spacing.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "cfd/grid/spacing.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -71,7 +72,8 @@ TEST(SpacingTest, Ittc57AndTheFirstCellHeight) {
 TEST(SpacingTest, BadArgumentsNameTheValue) {
   EXPECT_THAT(ErrorOf([] { GeometricNodes(0, 1.0, 0.1); }), HasSubstr("got n = 0"));
   EXPECT_THAT(ErrorOf([] { GeometricNodes(10, 1.0, -0.1); }), HasSubstr("first spacing = -0.1 m"));
-  EXPECT_THAT(ErrorOf([] { GeometricNodes(10, 1.0, 2.0); }), HasSubstr("first spacing 2 m is larger than the length 1 m"));
+  EXPECT_THAT(ErrorOf([] { GeometricNodes(10, 1.0, 2.0); }),
+              HasSubstr("first spacing 2 m is larger than the length 1 m"));
   EXPECT_THAT(ErrorOf([] { TwoSidedNodes(10, 1.0, 0.5, 0.5); }),
               HasSubstr("end spacings 0.5 m and 0.5 m are too large for 10 cells over 1 m"));
 }
