@@ -135,7 +135,7 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
     std::vector<double> z;
     std::vector<double> f[2];
     bool on_hull;
-    std::vector<double> tilt[2];   // initial slope dz/dd of the lines
+    std::vector<double> tilt[2];  // initial slope dz/dd of the lines
   };
   std::vector<Station> stations(nx + 1);
   for (int k = 0; k <= nx; ++k) {

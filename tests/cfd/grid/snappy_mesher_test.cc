@@ -15,6 +15,7 @@
 #include "cfd/geometry/hydrostatics.h"
 #include "cfd/grid/hull_grid.h"
 #include "cfd/grid/mesh_case.h"
+#include "cfd/grid/mesh_writer.h"
 #include "cfd/grid/spacing.h"
 #include "data/schema/errors.h"
 #include "tests/test_utilities/test_utilities.h"
@@ -75,6 +76,63 @@ TEST(SnappyMesherTest, MissingOpenFoamIsOneClearError) {
     EXPECT_THAT(e.what(),
                 HasSubstr("/nonexistent/openfoam/bashrc: OpenFOAM environment not found"));
   }
+}
+
+// OpenFOAM's checkMesh reads the polyMesh kelvin writes for a Wigley grid and
+// finds the same cells, volume and non-orthogonality, and no failed check
+// other than the aspect ratio of the y+ ~ 1 wall cells.
+TEST(SnappyMesherTest, CheckMeshAgreesWithKelvinsQualityOfTheWigleyGrid) {
+  if (!std::filesystem::exists("/usr/share/openfoam/etc/bashrc"))
+    GTEST_SKIP() << "Debian openfoam not installed";
+  ScopedTempDir dir;
+  const WigleySections wigley(2.5, 0.25, 0.15625);
+  HullGridOptions o;
+  o.cells_hull = 24;
+  o.cells_upstream = 6;
+  o.cells_downstream = 8;
+  o.cells_girth = 12;
+  o.cells_below_keel = 8;
+  o.cells_normal = 16;
+  const Mesh mesh = MakeHullGrid(wigley, o);
+  WritePolyMesh(mesh, dir.path());
+  std::filesystem::create_directories(dir / "system");
+  std::ofstream(dir / "system/controlDict")
+      << "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+         "application checkMesh; startFrom startTime; startTime 0; stopAt endTime; endTime 1; "
+         "deltaT 1;\n"
+         "writeControl timeStep; writeInterval 1;\n";
+  std::ofstream(dir / "system/fvSchemes")
+      << "FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }\n"
+         "ddtSchemes { default steadyState; } gradSchemes { default Gauss linear; } divSchemes { "
+         "default none; }\n"
+         "laplacianSchemes { default Gauss linear corrected; } interpolationSchemes { default "
+         "linear; }\n"
+         "snGradSchemes { default corrected; }\n";
+  std::ofstream(dir / "system/fvSolution")
+      << "FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\n";
+  const auto r = kelvin::testing::RunCommand(
+      "bash -c 'source /usr/share/openfoam/etc/bashrc >/dev/null 2>&1; "
+      "checkMesh -case \"" +
+      dir.path().string() + "\"'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto number_after = [&](const std::string& key) {
+    const auto pos = r.output.find(key);
+    EXPECT_NE(pos, std::string::npos) << key << "\n" << r.output;
+    return pos == std::string::npos ? -1.0 : std::stod(r.output.substr(pos + key.size()));
+  };
+  const MeshQuality q = mesh.Quality();
+  EXPECT_EQ(static_cast<int>(number_after("    cells:")), q.n_cells);
+  // The boundary faces on the hull are slightly warped quads; the two codes
+  // integrate a warped face's pyramid differently (OpenFOAM with the face's
+  // total area vector at its centroid), which moves the total by about the
+  // warp volume of the hull faces: ~1e-6 of the domain here.
+  EXPECT_NEAR(number_after("Total volume = ") / q.total_volume, 1.0, 1e-5);
+  EXPECT_NEAR(number_after("Mesh non-orthogonality Max: "), q.max_non_orthogonality, 1e-3);
+  EXPECT_THAT(r.output, HasSubstr("Face pyramids OK."));
+  EXPECT_THAT(r.output, HasSubstr("Cell volumes OK."));
+  EXPECT_THAT(r.output, HasSubstr("Non-orthogonality check OK."));
+  EXPECT_THAT(r.output, HasSubstr("Failed 1 mesh checks."));  // the aspect ratio only
+  EXPECT_THAT(r.output, HasSubstr("High aspect ratio cells found"));
 }
 
 TEST(SnappyMesherTest, DtcGridQualityReport) {
