@@ -221,8 +221,8 @@ void Bridge::SendNmea() {
   nmea_->Send(fix);
 }
 
-void Bridge::LogHelmProblems(std::int64_t now_ns) {
-  if (static_cast<double>(now_ns - last_log_ns_) < options_.log_interval * 1e9) return;
+void Bridge::LogHelmProblems(std::int64_t now_ns, bool force) {
+  if (!force && static_cast<double>(now_ns - last_log_ns_) < options_.log_interval * 1e9) return;
   const HelmCounters& c = helm_.counters();
   if (c.rejected() != logged_counters_.rejected() || c.clamped != logged_counters_.clamped) {
     spdlog::warn(
@@ -361,7 +361,7 @@ BridgeSummary Bridge::Run() {
       PublishEvent(kelvin::maneuver_event_t::STOP, 1, kNaN, sim_->time(), sim_->state()[sim::kPsi]);
     }
     if (nmea_ && seq % nmea_every_ == 0) SendNmea();
-    LogHelmProblems(MonotonicNanoseconds());
+    LogHelmProblems(MonotonicNanoseconds(), false);
 
     if (!finite) {
       summary_.status = BridgeStatus::kDiverged;
@@ -369,6 +369,8 @@ BridgeSummary Bridge::Run() {
     }
     if (options_.duration > 0 ? sim_->time() >= options_.duration - 1e-9 : (controller_ && !script_active_)) break;
   }
+  DrainLcm();  // count what arrived during the last period
+  LogHelmProblems(MonotonicNanoseconds(), true);
   summary_.sim_time = sim_->time();
   summary_.helm = helm_.counters();
   summary_.late_ticks = pacer.late_ticks();

@@ -108,7 +108,9 @@ class Bridge {
   void Publish(const std::string& channel, const auto& message);
   void PublishEvent(std::int8_t kind, int index, double overshoot, double t, double psi);
   void SendNmea();
-  void LogHelmProblems(std::int64_t now_ns);
+  // Logs the helm problems since the last report, at most once per
+  // log_interval unless forced (at the end of the run).
+  void LogHelmProblems(std::int64_t now_ns, bool force);
 
   sim::ShipParameters ship_;
   BridgeOptions options_;
