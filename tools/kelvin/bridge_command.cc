@@ -145,7 +145,9 @@ Command AddBridgeCommand(CLI::App& app) {
   cmd->add_option("--lcm-url", args->lcm_url, "LCM URL (default: LCM's, e.g. udpm://239.255.76.67:7667?ttl=0)");
   cmd->add_option("--channel-prefix", o.channel_prefix, "Channels <prefix>_STATE, <prefix>_HELM, <prefix>_EVENT")
       ->capture_default_str();
-  cmd->add_option("--nmea", args->nmea, "Send NMEA 0183 over UDP to host:port (the usual one: 127.0.0.1:10110)");
+  cmd->add_option("--nmea", args->nmea, "Send NMEA 0183 over UDP to host:port (without a value: 127.0.0.1:10110)")
+      ->expected(0, 1)
+      ->default_str("127.0.0.1:10110");
   cmd->add_option("--nmea-rate", o.nmea_rate, "NMEA fixes per wall-clock second, 1 to 10")->capture_default_str();
   cmd->add_option("--origin", args->origin, "Latitude,longitude in deg of the start position (default 53.5,3.0)");
   cmd->add_option("--stale-timeout", o.helm.stale_timeout, "Reject helm commands older than this (s)")
