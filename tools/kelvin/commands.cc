@@ -6,6 +6,7 @@ std::vector<Command> AddCommands(CLI::App& app) {
   std::vector<Command> commands;
   commands.push_back(AddSimulateCommand(app));
   commands.push_back(AddBridgeCommand(app));
+  commands.push_back(AddListenCommand(app));
   return commands;
 }
 

@@ -17,6 +17,7 @@ struct Command {
 
 Command AddSimulateCommand(CLI::App& app);
 Command AddBridgeCommand(CLI::App& app);
+Command AddListenCommand(CLI::App& app);
 
 // Every subcommand, in the order `kelvin --help` lists them.
 std::vector<Command> AddCommands(CLI::App& app);
