@@ -77,7 +77,7 @@ void ShipParameters::Validate(const std::string& src) const {
 ShipParameters LoadShip(const std::filesystem::path& path) {
   using data::ConfigNode;
   const ConfigNode root = ConfigNode::LoadFile(path);
-  root.ExpectKeys({"ship", "principal", "hull", "propeller", "rudder", "actuators", "conditions"});
+  root.ExpectKeys({"ship", "principal", "hull", "propeller", "rudder", "actuators", "conditions", "geometry"});
   ShipParameters s;
 
   const ConfigNode ship = root["ship"];

@@ -99,3 +99,27 @@ TEST(KelvinSimulateTest, WritesResultsThatH5pyAndThePlotScriptRead) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(KelvinHullTest, ReportsDtcHydrostatics) {
+  const auto ship = kelvin::testing::SourceDir() / "data/ships/dtc.yaml";
+  if (!std::filesystem::exists("/usr/share/doc/openfoam-examples/examples/resources/geometry/DTC-scaled.stl.gz")) {
+    GTEST_SKIP() << "Debian's openfoam-examples is not installed";
+  }
+  kelvin::testing::ScopedTempDir dir;
+  const auto r = RunCommand(Kelvin() + " hull " + ship.string() + " -o " + (dir / "h.h5").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("0 open edges"));
+  EXPECT_THAT(r.output, HasSubstr("displacement volume"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "h.h5"));
+}
+
+TEST(KelvinHullTest, ShipWithoutGeometryIsOneClearError) {
+  const auto r = RunCommand(Kelvin() + " hull " + Ship());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(CountLines(r.output), 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("missing required key 'geometry'"));
+}
+
+}  // namespace

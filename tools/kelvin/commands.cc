@@ -4,8 +4,10 @@ namespace kelvin::cli {
 
 std::vector<Command> AddCommands(CLI::App& app) {
   std::vector<Command> commands;
+  commands.push_back(AddHullCommand(app));
   commands.push_back(AddSimulateCommand(app));
   commands.push_back(AddBridgeCommand(app));
+  commands.push_back(AddIdentifyCommand(app));
   commands.push_back(AddListenCommand(app));
   return commands;
 }

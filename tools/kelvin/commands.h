@@ -16,7 +16,9 @@ struct Command {
 };
 
 Command AddSimulateCommand(CLI::App& app);
+Command AddHullCommand(CLI::App& app);
 Command AddBridgeCommand(CLI::App& app);
+Command AddIdentifyCommand(CLI::App& app);
 Command AddListenCommand(CLI::App& app);
 
 // Every subcommand, in the order `kelvin --help` lists them.

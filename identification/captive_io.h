@@ -1,0 +1,30 @@
+// Reading and writing captive campaigns: the HDF5 layout (one file per
+// campaign, one group per run) and the CSV layout for towing-tank data (one
+// file per run). Both are specified in data/schema/captive_schema.md.
+#pragma once
+
+#include <filesystem>
+
+#include "identification/captive_run.h"
+
+namespace kelvin::ident {
+
+inline constexpr std::string_view kCaptiveSchema = "kelvin.captive/1";
+
+// Writes the campaign atomically (temporary file + rename).
+void WriteCampaignH5(const CaptiveCampaign& campaign, const std::filesystem::path& path);
+
+// Reads and validates (ValidateCampaign) a campaign. Throws
+// kelvin::DataFileError naming the file, the run and the channel for a
+// missing channel, units other than s / N / N m, unknown motion kinds and
+// everything ValidateCampaign rejects.
+CaptiveCampaign ReadCampaignH5(const std::filesystem::path& path);
+
+// One run as CSV: '# key: value' header lines, then a header row
+// 'time [s],X [N],Y [N],N [N m]' and one row per sample.
+void WriteRunCsv(const CaptiveRun& run, const std::filesystem::path& path);
+// Reads one run; the run is named by its '# run:' line or the file stem.
+// Throws kelvin::DataFileError with the file, line, run and channel.
+CaptiveRun ReadRunCsv(const std::filesystem::path& path);
+
+}  // namespace kelvin::ident

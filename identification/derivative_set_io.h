@@ -1,0 +1,33 @@
+// Output of an identification: the derivative set as YAML for humans (its
+// `hull:` section has the keys of a ship file's `hull:` section, so it can be
+// pasted into data/ships/<ship>.yaml) and as HDF5 with the full covariance
+// and the measured and fitted forces of every run (for
+// tools/plot_identification.py). Both files are written atomically.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "identification/captive_run.h"
+#include "identification/joint_fit.h"
+#include "identification/pmm_analysis.h"
+
+namespace kelvin::ident {
+
+struct IdentificationReport {
+  std::string source;  // the campaign file(s)
+  const CaptiveCampaign* campaign = nullptr;
+  const JointFitResult* fit = nullptr;
+  const PmmAnalysis* pmm = nullptr;  // optional cross-check
+};
+
+std::string FormatDerivativeYaml(const IdentificationReport& report);
+void WriteDerivativeYaml(const IdentificationReport& report, const std::filesystem::path& path);
+void WriteDerivativeH5(const IdentificationReport& report, const std::filesystem::path& path);
+
+// The joint-fit value a classical PMM derivative corresponds to (see
+// pmm_analysis.h): e.g. "Y_r" -> Y_r - m'_x, "N_rdot" -> -J'_z. False for
+// names without a counterpart.
+bool ClassicalCounterpart(const std::string& name, const sim::HullCoefficients<double>& c, double* value);
+
+}  // namespace kelvin::ident

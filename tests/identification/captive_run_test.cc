@@ -1,0 +1,148 @@
+// Kinematics of the prescribed captive motions, the rigid-body inertia, and
+// the captive force model against the simulator's motion equations. Ship:
+// KVLCC2 L7 of Yasukawa & Yoshimura (2015), J. Mar. Sci. Technol. 20:37-52.
+#include "identification/captive_run.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "data/schema/errors.h"
+#include "identification/captive_force_model.h"
+#include "identification/virtual_captive.h"
+#include "tests/test_utilities/test_utilities.h"
+
+namespace kelvin::ident {
+namespace {
+
+sim::ShipParameters Kvlcc2() { return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml"); }
+
+MotionParameters Motion(MotionKind kind) {
+  MotionParameters m;
+  m.kind = kind;
+  m.U = 1.2;
+  m.beta = 0.15;
+  m.y_a = 0.3;
+  m.psi_a = 0.2;
+  m.omega = 0.6;
+  m.r_prime = 0.4;
+  m.t_ramp = 4.0;
+  return m;
+}
+
+TEST(CaptiveRunTest, ClosedFormKinematics) {
+  const double L = 7.0, t = 3.3;
+  const MotionParameters sway = Motion(MotionKind::kPureSway);
+  const BodyKinematics s = KinematicsAt(sway, L, t);
+  EXPECT_DOUBLE_EQ(s.u, 1.2);
+  EXPECT_NEAR(s.v, -0.3 * 0.6 * std::cos(0.6 * t), 1e-15);
+  EXPECT_NEAR(s.dv, 0.3 * 0.36 * std::sin(0.6 * t), 1e-15);
+  EXPECT_EQ(s.r, 0.0);
+  const BodyKinematics y = KinematicsAt(Motion(MotionKind::kPureYaw), L, t);
+  EXPECT_NEAR(y.r, -0.2 * 0.6 * std::sin(0.6 * t), 1e-15);
+  EXPECT_NEAR(y.dr, -0.2 * 0.36 * std::cos(0.6 * t), 1e-15);
+  // The PMM yaw law keeps the drift small: v = U (psi cos psi - sin psi) ~ -U psi^3 / 3.
+  const double psi = 0.2 * std::cos(0.6 * t);
+  EXPECT_NEAR(y.v, 1.2 * (psi * std::cos(psi) - std::sin(psi)), 1e-15);
+  const BodyKinematics d = KinematicsAt(Motion(MotionKind::kStaticDrift), L, 10.0);
+  EXPECT_NEAR(-std::atan(d.v / d.u), 0.15, 1e-15);  // beta = -atan(v/u) = psi
+  EXPECT_NEAR(std::hypot(d.u, d.v), 1.2, 1e-15);
+  EXPECT_EQ(KinematicsAt(Motion(MotionKind::kStaticDrift), L, 0.0).u, 0.0);  // ramp starts at rest
+  const BodyKinematics c = KinematicsAt(Motion(MotionKind::kCircularMotion), L, t);
+  EXPECT_NEAR(c.r * L / 1.2, 0.4, 1e-15);
+  EXPECT_NEAR(-std::atan(c.v / c.u), 0.15, 1e-15);
+  EXPECT_EQ(c.du, 0.0);
+}
+
+// The body accelerations must be the time derivatives of the body
+// velocities (they include the r v and -r u transport terms).
+TEST(CaptiveRunTest, AccelerationsAreDerivativesOfVelocities) {
+  for (MotionKind kind : {MotionKind::kStaticDrift, MotionKind::kPureSway, MotionKind::kPureYaw,
+                          MotionKind::kYawDrift}) {
+    const MotionParameters m = Motion(kind);
+    for (double t : {1.0, 2.7, 5.5, 9.1}) {
+      const double h = 1e-5;
+      const BodyKinematics a = KinematicsAt(m, 7.0, t - h), b = KinematicsAt(m, 7.0, t + h);
+      const BodyKinematics k = KinematicsAt(m, 7.0, t);
+      EXPECT_NEAR(k.du, (b.u - a.u) / (2 * h), 1e-8) << MotionKindName(kind) << " t " << t;
+      EXPECT_NEAR(k.dv, (b.v - a.v) / (2 * h), 1e-8) << MotionKindName(kind) << " t " << t;
+      EXPECT_NEAR(k.dr, (b.r - a.r) / (2 * h), 1e-8) << MotionKindName(kind) << " t " << t;
+    }
+  }
+}
+
+// A ship moving freely under its hull forces alone accelerates as
+// MmgModel::Accelerations says; then the rigid-body inertia force equals the
+// captive hydrodynamic force (hull + added-mass reactions). This ties the
+// captive force model and M_RB a to the simulator's motion equations.
+TEST(CaptiveRunTest, CaptiveForceModelMatchesMotionEquations) {
+  const sim::ShipParameters ship = Kvlcc2();
+  const sim::MmgModel<double> model(ship);
+  const CaptiveShip cs = CaptiveShipFrom(ship);
+  for (auto [u, v, r] : std::vector<std::array<double, 3>>{{1.1, -0.2, 0.05}, {0.9, 0.1, -0.08}, {1.2, 0.0, 0.0}}) {
+    const sim::PlanarForce<double> hull = model.HullForces(u, v, r);
+    const std::array<double, 3> acc = model.Accelerations(u, v, r, hull);
+    const BodyKinematics k{u, v, r, acc[0], acc[1], acc[2]};
+    const std::array<double, 3> f = CaptiveHydrodynamicForce(model, k);
+    const std::array<double, 3> rb = RigidBodyInertia(cs, k);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], rb[c], 1e-9 * (1 + std::abs(rb[c]))) << "channel " << c;
+  }
+}
+
+TEST(CaptiveRunTest, CircularMotionRunIsSteadyAndAnalysed) {
+  const sim::ShipParameters ship = Kvlcc2();
+  MotionParameters m = Motion(MotionKind::kCircularMotion);
+  const CaptiveRun run = GenerateRun(sim::MmgModel<double>(ship), "arm", m, {});
+  const std::array<double, 3> f0 = {run.force[0].back(), run.force[1].back(), run.force[2].back()};
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(run.force[c][run.force[c].size() / 2], f0[c], 1e-9 * std::abs(f0[c]));
+  EXPECT_NO_THROW(SelectWindow(run, "arm"));
+}
+
+TEST(CaptiveRunTest, BadGeneratorOptionsNameTheOption) {
+  VirtualCaptiveOptions o;
+  o.samples_per_period = 4;
+  try {
+    o.Validate();
+    FAIL();
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("'samples_per_period' = 4: expected at least 8"), std::string::npos);
+  }
+  CampaignDesign d = StandardDesign(1.0, true);
+  d.sway_amplitudes = {0.1, -0.2};
+  try {
+    d.Validate();
+    FAIL();
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("'sway_amplitudes' = -0.2"), std::string::npos) << e.what();
+  }
+  d = StandardDesign(0.0, true);
+  try {
+    d.Validate();
+    FAIL();
+  } catch (const ArgumentError& e) {
+    EXPECT_NE(std::string(e.what()).find("'U' = 0"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CaptiveRunTest, BadShipDataNamesTheAttribute) {
+  CaptiveCampaign c;
+  c.ship = CaptiveShipFrom(Kvlcc2());
+  c.ship.I_zG = -1;
+  try {
+    ValidateCampaign(c, "c.h5");
+    FAIL();
+  } catch (const DataFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("c.h5: ship attribute 'I_zG' = -1"), std::string::npos) << e.what();
+  }
+  c.ship = CaptiveShipFrom(Kvlcc2());
+  try {
+    ValidateCampaign(c, "c.h5");
+    FAIL();
+  } catch (const DataFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("c.h5: the campaign holds no runs"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace kelvin::ident

@@ -1,0 +1,163 @@
+// kelvin identify: MMG hull derivatives and added masses from captive runs
+// (a campaign HDF5 file, or CSV runs with a ship file), with standard errors,
+// identifiability warnings and a PMM cross-check.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "data/schema/errors.h"
+#include "identification/captive_io.h"
+#include "identification/derivative_set_io.h"
+#include "identification/joint_fit.h"
+#include "identification/pmm_analysis.h"
+#include "identification/virtual_captive.h"
+#include "simulator/mmg/ship_parameters.h"
+#include "tools/kelvin/commands.h"
+
+namespace kelvin::cli {
+
+namespace {
+
+struct IdentifyArgs {
+  std::vector<std::string> inputs;
+  std::string output;
+  std::string h5_output;
+  std::string ship_file;
+  std::string loss = "none";
+  double loss_scale = 3.0;
+  double min_noise = 0.01;
+  double max_relative_std_error = 0.25;
+  std::vector<std::string> priors;
+  std::vector<std::string> fixed;
+  bool keep_unidentifiable = false;
+};
+
+// "NAME=VALUE" -> (NAME, VALUE); throws ArgumentError naming the option.
+std::pair<std::string, std::string> SplitAssignment(const std::string& option, const std::string& text,
+                                                    const std::string& form) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw ArgumentError(fmt::format("{} '{}': expected {}", option, text, form));
+  }
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+double ParseDouble(const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) throw ArgumentError(fmt::format("{}: '{}' is not a number", option, text));
+  return v;
+}
+
+void RunIdentify(const IdentifyArgs& a) {
+  namespace fs = std::filesystem;
+  ident::JointFitOptions options;
+  if (a.loss == "huber") {
+    options.loss = ident::JointFitOptions::Loss::kHuber;
+  } else if (a.loss == "cauchy") {
+    options.loss = ident::JointFitOptions::Loss::kCauchy;
+  } else if (a.loss != "none") {
+    throw ArgumentError(fmt::format("--loss '{}': expected 'none', 'huber' or 'cauchy'", a.loss));
+  }
+  options.loss_scale = a.loss_scale;
+  options.min_noise_fraction = a.min_noise;
+  options.max_relative_std_error = a.max_relative_std_error;
+  options.fix_unidentifiable = !a.keep_unidentifiable;
+  for (const std::string& p : a.priors) {
+    const auto [name, rest] = SplitAssignment("--prior", p, "NAME=MEAN:SIGMA (e.g. Y_vvr=0.38:0.05)");
+    const auto colon = rest.find(':');
+    if (colon == std::string::npos) {
+      throw ArgumentError(fmt::format("--prior '{}': expected NAME=MEAN:SIGMA (e.g. Y_vvr=0.38:0.05)", p));
+    }
+    options.priors[name] = {ParseDouble("--prior " + name, rest.substr(0, colon)),
+                            ParseDouble("--prior " + name, rest.substr(colon + 1))};
+  }
+  for (const std::string& f : a.fixed) {
+    const auto [name, value] = SplitAssignment("--fix", f, "NAME=VALUE (e.g. m_x_prime=0.022)");
+    options.fixed[name] = ParseDouble("--fix " + name, value);
+  }
+  // Option errors are argument errors: check before reading any data.
+  options.Validate();
+
+  ident::CaptiveCampaign campaign;
+  std::string source;
+  bool any_csv = false, any_h5 = false;
+  for (const std::string& in : a.inputs) {
+    const std::string ext = fs::path(in).extension().string();
+    if (ext == ".csv") {
+      any_csv = true;
+    } else if (ext == ".h5" || ext == ".hdf5") {
+      any_h5 = true;
+    } else {
+      throw ArgumentError(fmt::format("input '{}': expected a campaign .h5 file or .csv runs", in));
+    }
+  }
+  if (any_csv && any_h5) throw ArgumentError("inputs: give either one campaign .h5 file or .csv runs, not both");
+  if (any_h5) {
+    if (a.inputs.size() != 1) throw ArgumentError("inputs: give one campaign .h5 file");
+    source = a.inputs.front();
+    campaign = ident::ReadCampaignH5(source);
+  } else {
+    if (a.ship_file.empty()) throw ArgumentError("--ship is required with .csv runs (the ship data of the campaign)");
+    campaign.ship = ident::CaptiveShipFrom(sim::LoadShip(a.ship_file));
+    campaign.description = "CSV runs";
+    for (const std::string& in : a.inputs) campaign.runs.push_back(ident::ReadRunCsv(in));
+    source = fmt::format("{}", fmt::join(a.inputs, ", "));
+    ident::ValidateCampaign(campaign, source);
+  }
+
+  const ident::PmmAnalysis pmm = ident::AnalyseCampaign(campaign, source);
+  const ident::JointFitResult fit = ident::FitCampaign(campaign, options, source);
+  const ident::IdentificationReport report{source, &campaign, &fit, &pmm};
+  const fs::path yaml_path(a.output);
+  const fs::path h5_path = a.h5_output.empty() ? fs::path(yaml_path).replace_extension(".h5") : fs::path(a.h5_output);
+  if (h5_path == yaml_path) throw ArgumentError(fmt::format("--h5 '{}' is the YAML output", h5_path.string()));
+  ident::WriteDerivativeH5(report, h5_path);
+  ident::WriteDerivativeYaml(report, yaml_path);
+
+  fmt::print("{} runs, {} residuals; solver: {}\n", campaign.runs.size(), fit.residuals,
+             fit.converged ? "converged" : "NOT converged");
+  fmt::print("{:<11} {:>12} {:>11}  {}\n", "coefficient", "value", "std error", "status");
+  for (int i = 0; i < ident::kCoefficientCount; ++i) {
+    fmt::print("{:<11} {:>12.6g} {:>11.3g}  {}\n", sim::HullCoefficients<double>::kNames[i], fit.coefficients[i],
+               fit.std_error[i], ident::CoefficientStatusName(fit.status[i]));
+  }
+  for (const std::string& w : fit.warnings) fmt::print("warning: {}\n", w);
+  fmt::print("  written: {}\n  written: {}\n", yaml_path.string(), h5_path.string());
+}
+
+}  // namespace
+
+Command AddIdentifyCommand(CLI::App& app) {
+  auto args = std::make_shared<IdentifyArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "identify", "Fit MMG hull derivatives and added masses to captive runs (PMM analysis + joint Ceres fit)");
+  cmd->add_option("inputs", args->inputs, "Campaign HDF5 file, or CSV runs (data/schema/captive_schema.md)")
+      ->required();
+  cmd->add_option("-o,--output", args->output, "Derivative set (YAML, with standard errors)")->required();
+  cmd->add_option("--h5", args->h5_output, "HDF5 output with the covariance and fitted forces (default: -o with .h5)");
+  cmd->add_option("--ship", args->ship_file, "Ship file for CSV runs (data/ships/<ship>.yaml)");
+  cmd->add_option("--loss", args->loss, "Robust loss: none, huber or cauchy")->capture_default_str();
+  cmd->add_option("--loss-scale", args->loss_scale, "Robust loss scale in noise standard deviations")
+      ->capture_default_str();
+  cmd->add_option("--min-noise", args->min_noise, "Noise floor per run and channel, fraction of the channel RMS")
+      ->capture_default_str();
+  cmd->add_option("--max-rel-std-error", args->max_relative_std_error,
+                  "Flag a coefficient whose standard error exceeds this fraction of its value")
+      ->capture_default_str();
+  cmd->add_option("--prior", args->priors, "Gaussian prior NAME=MEAN:SIGMA (repeatable)");
+  cmd->add_option("--fix", args->fixed, "Hold a coefficient NAME=VALUE (repeatable)");
+  cmd->add_flag("--keep-unidentifiable", args->keep_unidentifiable,
+                "Report flagged coefficients at their fitted values instead of dropping them");
+  return {cmd, [args] { RunIdentify(*args); }};
+}
+
+}  // namespace kelvin::cli
