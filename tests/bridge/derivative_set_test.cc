@@ -9,6 +9,7 @@
 
 #include "bridge/derivative_set.h"
 #include "data/schema/errors.h"
+#include "identification/derivative_set_io.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::bridge {
@@ -50,6 +51,44 @@ TEST(DerivativeSet, LoadsTheHullAndThePassingCheck) {
   const DerivativeAssessment a = AssessDerivatives(ship, set, /*require_checked=*/true);
   EXPECT_EQ(a.status, DerivativeStatus::kChecked);
   EXPECT_EQ(a.message, "derivative set " + path.string() + " passed its check against free-running CFD zig-zag 20/20");
+}
+
+// The contract with identification: the YAML that `kelvin identify` writes
+// loads as a derivative set with the same hull coefficients, unchecked until
+// a check section is added.
+TEST(DerivativeSet, ReadsTheFileKelvinIdentifyWrites) {
+  const sim::ShipParameters ship = Kvlcc2();
+  ident::CaptiveCampaign campaign;
+  campaign.ship.name = "KVLCC2";
+  ident::JointFitResult fit;
+  fit.coefficients = ship.hull;
+  fit.coefficients.N_r = -0.0512345678901234;
+  for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
+    fit.status[static_cast<std::size_t>(i)] = ident::CoefficientStatus::kIdentified;
+    fit.std_error[static_cast<std::size_t>(i)] = 1e-3;
+  }
+  fit.converged = true;
+  ident::IdentificationReport report;
+  report.source = "virtual_campaign.h5";
+  report.campaign = &campaign;
+  report.fit = &fit;
+  const testing::ScopedTempDir dir;
+  const auto path = dir / "derivatives.yaml";
+  ident::WriteDerivativeYaml(report, path);
+
+  const DerivativeSet set = LoadDerivativeSet(path);
+  EXPECT_EQ(set.name, "virtual_campaign.h5");
+  for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
+    EXPECT_EQ(set.hull[i], fit.coefficients[i]) << sim::HullCoefficients<double>::kNames[static_cast<std::size_t>(i)];
+  }
+  EXPECT_FALSE(set.check.has_value());
+  EXPECT_EQ(AssessDerivatives(ship, set, false).status, DerivativeStatus::kUnchecked);
+
+  // The check stage appends its section.
+  std::ofstream(path, std::ios::app) << "check:\n  passed: true\n  reference: CFD zig-zag 10/10\n";
+  const DerivativeSet checked = LoadDerivativeSet(path);
+  ASSERT_TRUE(checked.check.has_value());
+  EXPECT_EQ(AssessDerivatives(ship, checked, true).status, DerivativeStatus::kChecked);
 }
 
 TEST(DerivativeSet, ShipFileSetIsAReferenceNotCfdChecked) {
