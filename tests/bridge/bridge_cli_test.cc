@@ -157,6 +157,26 @@ TEST(BridgeCli, NmeaWithoutAValueGoesToTheUsualPort) {
   EXPECT_THAT(r.output, HasSubstr("nmea: 6 sentences sent, 0 dropped"));
 }
 
+TEST(ListenCli, EachBadArgumentExitsTwoWithOneMessage) {
+  const BadArgument cases[] = {
+      {"--count -1", "kelvin: error: --count -1: expected a number of states >= 0"},
+      {"--idle-timeout 0", "kelvin: error: --idle-timeout 0: expected a positive time in s"},
+      {"--timeout -1", "kelvin: error: --timeout -1: expected a time >= 0 s"},
+      {"--lcm-url bogus://x", "kelvin: error: --lcm-url 'bogus://x': LCM cannot open this URL"},
+  };
+  for (const auto& c : cases) {
+    const auto r = testing::RunCommand(Kelvin() + " listen " + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
+    EXPECT_EQ(LastLine(r.output), c.message) << c.args;
+  }
+}
+
+TEST(ListenCli, StopsAtItsTimeoutWhenNothingArrives) {
+  const auto r = testing::RunCommand(Kelvin() + " listen --lcm-url memq:// --timeout 0.2");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("listen: 0 states, 0 events, 0 out of sequence, 0 malformed"));
+}
+
 TEST(BridgeCli, InterruptStopsTheBridgeCleanly) {
   // Without a script or duration the bridge runs until interrupted.
   const auto r = testing::RunCommand("timeout --preserve-status -s INT 1 " + Kelvin() + " bridge " + Ship() +

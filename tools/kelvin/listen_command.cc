@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <string>
@@ -50,6 +51,8 @@ void RunListen(const ListenArgs& a) {
   lcm::LCM lcm(a.lcm_url);
   if (!lcm.good()) throw ArgumentError(fmt::format("--lcm-url '{}': LCM cannot open this URL", a.lcm_url));
   bridge::Listener listener(lcm, a.channel_prefix);
+  fmt::print("listen: subscribed to {}_STATE and {}_EVENT\n", a.channel_prefix, a.channel_prefix);
+  std::fflush(stdout);
 
   g_stop_listen.store(false);
   struct sigaction sa {};
