@@ -239,6 +239,8 @@ void Bridge::LogHelmProblems(std::int64_t now_ns, bool force) {
 }
 
 BridgeSummary Bridge::Run() {
+  KELVIN_CHECK(!ran_, "Bridge::Run() runs once per Bridge");
+  ran_ = true;
   nmea_epoch_ = options_.nmea_epoch >= 0 ? options_.nmea_epoch : static_cast<double>(RealtimeMicroseconds()) * 1e-6;
   const double wall_rate = options_.rate * options_.speedup;
   nmea_every_ = std::max(1L, std::lround(wall_rate / options_.nmea_rate));
@@ -368,6 +370,12 @@ BridgeSummary Bridge::Run() {
       break;
     }
     if (options_.duration > 0 ? sim_->time() >= options_.duration - 1e-9 : (controller_ && !script_active_)) break;
+  }
+  if (script_active_ && summary_.status != BridgeStatus::kDiverged) {
+    // The run ends (duration, interrupt) before the maneuver does: its STOP
+    // carries the metrics known so far.
+    script_active_ = false;
+    PublishEvent(kelvin::maneuver_event_t::STOP, 1, kNaN, sim_->time(), sim_->state()[sim::kPsi]);
   }
   DrainLcm();  // count what arrived during the last period
   LogHelmProblems(MonotonicNanoseconds(), true);

@@ -79,7 +79,7 @@ class Bridge {
   Bridge& operator=(const Bridge&) = delete;
 
   // Runs until the duration or the script ends, RequestStop() is called or
-  // the state diverges.
+  // the state diverges. Once per Bridge.
   BridgeSummary Run();
   // Safe from a signal handler or another thread.
   void RequestStop() { stop_.store(true, std::memory_order_relaxed); }
@@ -122,6 +122,7 @@ class Bridge {
   std::unique_ptr<sim::ManeuverController> controller_;
   bool script_active_ = false;
   bool script_finished_ = false;
+  bool ran_ = false;
   HelmFilter helm_;
   lcm_subscription_t* helm_subscription_ = nullptr;
   LocalOrigin origin_;

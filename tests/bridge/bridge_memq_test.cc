@@ -221,6 +221,12 @@ TEST(BridgeMemq, HelmOrdersAreIgnoredWhileAScriptSteers) {
   EXPECT_EQ(s.helm.accepted, 1);
   EXPECT_EQ(s.helm_ignored_scripted, 1);
   EXPECT_DOUBLE_EQ(listener.states().back().rudder_order, -35 * kDeg);
+  // The run ends before the turning circle does: START, then STOP at 1 s.
+  ASSERT_EQ(listener.events().size(), 2u);
+  EXPECT_EQ(listener.events()[0].kind, kelvin::maneuver_event_t::START);
+  EXPECT_EQ(listener.events()[1].kind, kelvin::maneuver_event_t::STOP);
+  EXPECT_DOUBLE_EQ(listener.events()[1].t, 1.0);
+  EXPECT_TRUE(std::isnan(listener.events()[1].first_overshoot));
 }
 
 TEST(BridgeMemq, ChannelPrefixNamesTheChannels) {
