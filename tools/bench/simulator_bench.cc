@@ -11,13 +11,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "data/schema/atomic_file.h"
 #include "simulator/maneuvers/runner.h"
+#include "tools/bench/markdown_section.h"
 
 namespace {
 
@@ -27,26 +25,6 @@ using kelvin::sim::StateVector;
 double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
-}
-
-void ReplaceSection(const std::string& file, const std::string& section) {
-  const std::string begin = "<!-- simulator:begin -->", end = "<!-- simulator:end -->";
-  std::string text;
-  {
-    std::ifstream in(file);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    text = ss.str();
-  }
-  const std::string block = begin + "\n" + section + end;
-  const auto b = text.find(begin), e = text.find(end);
-  if (b != std::string::npos && e != std::string::npos && e > b) {
-    text.replace(b, e + end.size() - b, block);
-  } else {
-    if (text.empty()) text = "# Benchmarks\n\nFigures measured on the project's 2-core Debian 12 machine.\n";
-    text += "\n" + block + "\n";
-  }
-  kelvin::data::WriteFileAtomically(file, text);
 }
 
 }  // namespace
@@ -130,6 +108,6 @@ int main(int argc, char** argv) {
   fmt::print("{}", md);
   (void)erk_end;
   (void)rk4_end;
-  if (!write_to.empty()) ReplaceSection(write_to, md);
+  if (!write_to.empty()) kelvin::bench::ReplaceMarkdownSection(write_to, "simulator", md);
   return 0;
 }
