@@ -16,7 +16,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <sstream>
 #include <string>
@@ -25,8 +24,8 @@
 
 #include "bridge/bridge.h"
 #include "bridge/pacer.h"
-#include "data/schema/atomic_file.h"
 #include "simulator/mmg/ship_parameters.h"
+#include "tools/bench/markdown_section.h"
 
 namespace {
 
@@ -150,28 +149,6 @@ std::string Section(const Stats& b, const Stats& n, double rate, double seconds,
   return s.str();
 }
 
-// Replaces the block between <!-- bridge_pacing:begin/end --> (the
-// convention of every bench program), or appends it.
-void ReplaceSection(const std::string& path, const std::string& section) {
-  const std::string begin = "<!-- bridge_pacing:begin -->", end = "<!-- bridge_pacing:end -->";
-  std::string text;
-  {
-    std::ifstream f(path);
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    text = ss.str();
-  }
-  const std::string block = begin + "\n" + section + end;
-  const auto b = text.find(begin), e = text.find(end);
-  if (b != std::string::npos && e != std::string::npos && e > b) {
-    text.replace(b, e + end.size() - b, block);
-  } else {
-    if (text.empty()) text = "# Benchmarks\n\nFigures measured on the project's 2-core Debian 12 machine.\n";
-    text += "\n" + block + "\n";
-  }
-  kelvin::data::WriteFileAtomically(path, text);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -208,7 +185,7 @@ int main(int argc, char** argv) {
   const Stats n = Analyse(RunNaive(ship, rate, seconds), 1.0 / rate);
   const std::string section = Section(b, n, rate, seconds, summary.steps_per_state, summary.late_ticks, summary.resyncs);
   std::fputs(section.c_str(), stdout);
-  if (!markdown.empty()) ReplaceSection(markdown, section);
+  if (!markdown.empty()) kelvin::bench::ReplaceMarkdownSection(markdown, "bridge_pacing", section);
   if (check && !(std::abs(b.mean_period_error_ms) < 0.1 && b.p99_jitter_ms < 2.0 && std::abs(b.drift_ms) < 2.0)) {
     return 1;
   }
