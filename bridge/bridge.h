@@ -44,6 +44,10 @@ struct BridgeOptions {
   double nmea_epoch = -1.0;  // s since the UNIX epoch at simulation time 0; < 0: the wall clock at start
   double max_lag = 1.0;      // s behind the schedule before the pacer re-anchors
   double log_interval = 1.0;  // s of wall-clock time between helm problem log lines
+  // SCHED_FIFO priority (1-99) of the thread that runs the loop, restored when
+  // Run() returns; 0 = normal scheduling. Needs root or CAP_SYS_NICE: without
+  // it the bridge warns and runs with normal scheduling.
+  int realtime_priority = 0;
 
   void Validate() const;  // throws kelvin::ArgumentError naming the option, its value and what is expected
 };
@@ -64,6 +68,7 @@ struct BridgeSummary {
   double max_lateness = 0;  // s
   long nmea_sentences_sent = 0;
   long nmea_sentences_dropped = 0;
+  bool realtime = false;    // the loop ran with SCHED_FIFO
   double step = 0;          // s, integrator step used
   int steps_per_state = 0;
 };

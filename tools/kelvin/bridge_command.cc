@@ -115,8 +115,8 @@ void RunBridge(BridgeArgs& a) {
              "{} stale, {} from the future, {} unknown source; {} ignored while scripted\n",
              h.received, h.accepted, h.clamped, h.rejected(), h.malformed, h.not_finite, h.out_of_range, h.stale,
              h.future, h.unknown_source, s.helm_ignored_scripted);
-  fmt::print("  pacing: {} late ticks, {} resyncs, max lateness {:.3f} ms\n", s.late_ticks, s.resyncs,
-             s.max_lateness * 1e3);
+  fmt::print("  pacing{}: {} late ticks, {} resyncs, max lateness {:.3f} ms\n", s.realtime ? " (SCHED_FIFO)" : "",
+             s.late_ticks, s.resyncs, s.max_lateness * 1e3);
   if (o.nmea) fmt::print("  nmea: {} sentences sent, {} dropped\n", s.nmea_sentences_sent, s.nmea_sentences_dropped);
   if (s.status == bridge::BridgeStatus::kDiverged) {
     throw std::runtime_error(fmt::format("simulation diverged at t = {} s", s.sim_time));
@@ -152,6 +152,8 @@ Command AddBridgeCommand(CLI::App& app) {
   cmd->add_option("--origin", args->origin, "Latitude,longitude in deg of the start position (default 53.5,3.0)");
   cmd->add_option("--stale-timeout", o.helm.stale_timeout, "Reject helm commands older than this (s)")
       ->capture_default_str();
+  cmd->add_option("--realtime-priority", o.realtime_priority,
+                  "Run the loop with SCHED_FIFO at this priority, 1-99 (needs root or CAP_SYS_NICE)");
   cmd->add_option("--helm-source", args->helm_sources, "Accept helm commands only from this source_id (repeatable)");
   return {cmd, [args] { RunBridge(*args); }};
 }
