@@ -20,7 +20,8 @@ template <typename T>
 std::array<T, 3> CaptiveHydrodynamicForce(const sim::MmgModel<T>& model, const BodyKinematics& k) {
   const sim::PlanarForce<T> h = model.HullForces(k.u, k.v, k.r);
   const T m_x = model.AddedMassX(), m_y = model.AddedMassY(), j_z = model.AddedInertiaZ();
-  return {h.X - m_x * k.du + m_y * (k.v * k.r), h.Y - m_y * k.dv - m_x * (k.u * k.r), h.N - j_z * k.dr};
+  return {h.X - m_x * k.du + m_y * (k.v * k.r), h.Y - m_y * k.dv - m_x * (k.u * k.r),
+          h.N - j_z * k.dr};
 }
 
 }  // namespace kelvin::ident

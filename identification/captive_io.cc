@@ -29,13 +29,14 @@ struct MotionAttribute {
   double MotionParameters::*member;
   std::string_view units;
 };
-constexpr std::array<MotionAttribute, 7> kMotionAttributes = {{{"U", &MotionParameters::U, "m/s"},
-                                                               {"beta", &MotionParameters::beta, "rad"},
-                                                               {"y_a", &MotionParameters::y_a, "m"},
-                                                               {"psi_a", &MotionParameters::psi_a, "rad"},
-                                                               {"omega", &MotionParameters::omega, "rad/s"},
-                                                               {"r_prime", &MotionParameters::r_prime, "-"},
-                                                               {"t_ramp", &MotionParameters::t_ramp, "s"}}};
+constexpr std::array<MotionAttribute, 7> kMotionAttributes = {
+    {{"U", &MotionParameters::U, "m/s"},
+     {"beta", &MotionParameters::beta, "rad"},
+     {"y_a", &MotionParameters::y_a, "m"},
+     {"psi_a", &MotionParameters::psi_a, "rad"},
+     {"omega", &MotionParameters::omega, "rad/s"},
+     {"r_prime", &MotionParameters::r_prime, "-"},
+     {"t_ramp", &MotionParameters::t_ramp, "s"}}};
 
 struct ShipAttribute {
   std::string_view key;
@@ -67,7 +68,8 @@ bool ParseRigidBodyInertia(const std::string& value, const std::string& where) {
   if (value == "included") return true;
   if (value == "excluded") return false;
   throw DataFileError(
-      fmt::format("{}: attribute 'rigid_body_inertia' = '{}': expected 'included' or 'excluded'", where, value));
+      fmt::format("{}: attribute 'rigid_body_inertia' = '{}': expected 'included' or 'excluded'",
+                  where, value));
 }
 
 double ParseNumber(const std::string& text, const std::string& where) {
@@ -91,12 +93,15 @@ void WriteCampaignH5(const CaptiveCampaign& campaign, const fs::path& path) {
   w.SetAttribute("/", "schema", kCaptiveSchema);
   w.SetAttribute("/", "description", campaign.description);
   w.SetAttribute("/ship", "name", campaign.ship.name);
-  for (const ShipAttribute& a : kShipAttributes) w.SetAttribute("/ship", std::string(a.key), campaign.ship.*a.member);
+  for (const ShipAttribute& a : kShipAttributes)
+    w.SetAttribute("/ship", std::string(a.key), campaign.ship.*a.member);
   for (const CaptiveRun& run : campaign.runs) {
     const std::string g = "/runs/" + run.name;
     w.SetAttribute(g, "kind", MotionKindName(run.motion.kind));
-    for (const MotionAttribute& a : kMotionAttributes) w.SetAttribute(g, std::string(a.key), run.motion.*a.member);
-    w.SetAttribute(g, "rigid_body_inertia", run.includes_rigid_body_inertia ? "included" : "excluded");
+    for (const MotionAttribute& a : kMotionAttributes)
+      w.SetAttribute(g, std::string(a.key), run.motion.*a.member);
+    w.SetAttribute(g, "rigid_body_inertia",
+                   run.includes_rigid_body_inertia ? "included" : "excluded");
     w.DeclareSeries(g + "/time", "s", "time from the start of the prescribed motion");
     w.Append(g + "/time", run.time);
     for (int c = 0; c < 3; ++c) {
@@ -113,13 +118,14 @@ CaptiveCampaign ReadCampaignH5(const fs::path& path) {
   const data::H5Reader r(path);
   const std::string src = path.string();
   if (!r.HasAttribute("/", "schema") || r.StringAttribute("/", "schema") != kCaptiveSchema) {
-    throw DataFileError(fmt::format("{}: attribute 'schema' = '{}': expected '{}' (a kelvin captive campaign)", src,
-                                    r.HasAttribute("/", "schema") ? r.StringAttribute("/", "schema") : "",
-                                    kCaptiveSchema));
+    throw DataFileError(fmt::format(
+        "{}: attribute 'schema' = '{}': expected '{}' (a kelvin captive campaign)", src,
+        r.HasAttribute("/", "schema") ? r.StringAttribute("/", "schema") : "", kCaptiveSchema));
   }
   CaptiveCampaign c;
   if (r.HasAttribute("/", "description")) c.description = r.StringAttribute("/", "description");
-  if (!r.Has("/ship")) throw DataFileError(fmt::format("{}: group '/ship' (ship data) is missing", src));
+  if (!r.Has("/ship"))
+    throw DataFileError(fmt::format("{}: group '/ship' (ship data) is missing", src));
   if (r.HasAttribute("/ship", "name")) c.ship.name = r.StringAttribute("/ship", "name");
   for (const ShipAttribute& a : kShipAttributes) {
     if (!r.HasAttribute("/ship", std::string(a.key))) {
@@ -136,27 +142,33 @@ CaptiveCampaign ReadCampaignH5(const fs::path& path) {
     if (!r.HasAttribute(g, "kind")) throw DataFileError(where + ": attribute 'kind' is missing");
     run.motion.kind = ParseMotionKind(r.StringAttribute(g, "kind"), where);
     for (const MotionAttribute& a : kMotionAttributes) {
-      if (r.HasAttribute(g, std::string(a.key))) run.motion.*a.member = r.NumberAttribute(g, std::string(a.key));
+      if (r.HasAttribute(g, std::string(a.key)))
+        run.motion.*a.member = r.NumberAttribute(g, std::string(a.key));
     }
     if (!r.HasAttribute(g, "rigid_body_inertia")) {
-      throw DataFileError(where + ": attribute 'rigid_body_inertia' ('included' or 'excluded') is missing");
+      throw DataFileError(where +
+                          ": attribute 'rigid_body_inertia' ('included' or 'excluded') is missing");
     }
-    run.includes_rigid_body_inertia = ParseRigidBodyInertia(r.StringAttribute(g, "rigid_body_inertia"), where);
+    run.includes_rigid_body_inertia =
+        ParseRigidBodyInertia(r.StringAttribute(g, "rigid_body_inertia"), where);
     auto read_channel = [&](std::string_view channel, std::string_view units) {
       const std::string ds = g + "/" + std::string(channel);
-      if (!r.Has(ds)) throw DataFileError(fmt::format("{}: channel '{}' is missing", where, channel));
+      if (!r.Has(ds))
+        throw DataFileError(fmt::format("{}: channel '{}' is missing", where, channel));
       data::Series s = r.Read(ds);
       if (s.cols != 1) {
-        throw DataFileError(fmt::format("{}: channel '{}' has {} columns; expected 1", where, channel, s.cols));
+        throw DataFileError(
+            fmt::format("{}: channel '{}' has {} columns; expected 1", where, channel, s.cols));
       }
       if (NormalizeUnits(s.units) != units) {
-        throw DataFileError(
-            fmt::format("{}: channel '{}' has units '{}'; expected '{}'", where, channel, s.units, units));
+        throw DataFileError(fmt::format("{}: channel '{}' has units '{}'; expected '{}'", where,
+                                        channel, s.units, units));
       }
       return std::move(s.values);
     };
     run.time = read_channel("time", "s");
-    for (int ch = 0; ch < 3; ++ch) run.force[ch] = read_channel(kChannelNames[ch], kChannelUnits[ch]);
+    for (int ch = 0; ch < 3; ++ch)
+      run.force[ch] = read_channel(kChannelNames[ch], kChannelUnits[ch]);
     c.runs.push_back(std::move(run));
   }
   ValidateCampaign(c, src);
@@ -169,11 +181,12 @@ void WriteRunCsv(const CaptiveRun& run, const fs::path& path) {
   for (const MotionAttribute& a : kMotionAttributes) {
     out += fmt::format("# {}: {:.17g}\n", a.key, run.motion.*a.member);
   }
-  out += fmt::format("# rigid_body_inertia: {}\n", run.includes_rigid_body_inertia ? "included" : "excluded");
+  out += fmt::format("# rigid_body_inertia: {}\n",
+                     run.includes_rigid_body_inertia ? "included" : "excluded");
   out += "time [s],X [N],Y [N],N [N m]\n";
   for (std::size_t i = 0; i < run.time.size(); ++i) {
-    out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", run.time[i], run.force[0][i], run.force[1][i],
-                       run.force[2][i]);
+    out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", run.time[i], run.force[0][i],
+                       run.force[1][i], run.force[2][i]);
   }
   data::WriteFileAtomically(path, out);
 }
@@ -229,16 +242,18 @@ CaptiveRun ReadRunCsv(const fs::path& path) {
         const std::string name = Trim(h.substr(0, open));
         const auto it = std::find(names.begin(), names.end(), name);
         if (it == names.end()) {
-          throw DataFileError(fmt::format("{}: unknown column '{}'; expected time [s], X [N], Y [N], N [N m]",
-                                          where(line_no), h));
+          throw DataFileError(
+              fmt::format("{}: unknown column '{}'; expected time [s], X [N], Y [N], N [N m]",
+                          where(line_no), h));
         }
         const int idx = static_cast<int>(it - names.begin());
-        const std::string u = (open == std::string::npos || close == std::string::npos || close < open)
-                                  ? std::string()
-                                  : NormalizeUnits(h.substr(open + 1, close - open - 1));
+        const std::string u =
+            (open == std::string::npos || close == std::string::npos || close < open)
+                ? std::string()
+                : NormalizeUnits(h.substr(open + 1, close - open - 1));
         if (u != units[idx]) {
-          throw DataFileError(fmt::format("{}: channel '{}' has units '{}'; expected '{}'", where(line_no), name, u,
-                                          units[idx]));
+          throw DataFileError(fmt::format("{}: channel '{}' has units '{}'; expected '{}'",
+                                          where(line_no), name, u, units[idx]));
         }
         column_of[idx] = c;
       }
@@ -250,8 +265,8 @@ CaptiveRun ReadRunCsv(const fs::path& path) {
       continue;
     }
     if (static_cast<int>(cells.size()) != columns) {
-      throw DataFileError(
-          fmt::format("{}: row has {} values; the header has {} columns", where(line_no), cells.size(), columns));
+      throw DataFileError(fmt::format("{}: row has {} values; the header has {} columns",
+                                      where(line_no), cells.size(), columns));
     }
     const std::array<std::string_view, 4> names = {"time", "X", "Y", "N"};
     for (int i = 0; i < 4; ++i) {
@@ -266,24 +281,29 @@ CaptiveRun ReadRunCsv(const fs::path& path) {
       }
     }
   }
-  if (!header_seen) throw DataFileError(fmt::format("{}: run '{}': no header row 'time [s],X [N],Y [N],N [N m]'",
-                                                    src, run.name));
+  if (!header_seen)
+    throw DataFileError(
+        fmt::format("{}: run '{}': no header row 'time [s],X [N],Y [N],N [N m]'", src, run.name));
   auto attr = [&](const std::string& key) -> const std::pair<std::string, int>* {
     auto it = attributes.find(key);
     return it == attributes.end() ? nullptr : &it->second;
   };
   const auto* kind = attr("kind");
-  if (!kind) throw DataFileError(fmt::format("{}: run '{}': header line '# kind: ...' is missing", src, run.name));
+  if (!kind)
+    throw DataFileError(
+        fmt::format("{}: run '{}': header line '# kind: ...' is missing", src, run.name));
   run.motion.kind = ParseMotionKind(kind->first, where(kind->second));
   for (const MotionAttribute& a : kMotionAttributes) {
     if (const auto* v = attr(std::string(a.key))) {
-      run.motion.*a.member = ParseNumber(v->first, fmt::format("{}: attribute '{}'", where(v->second), a.key));
+      run.motion.*a.member =
+          ParseNumber(v->first, fmt::format("{}: attribute '{}'", where(v->second), a.key));
     }
   }
   const auto* rbi = attr("rigid_body_inertia");
   if (!rbi) {
-    throw DataFileError(fmt::format("{}: run '{}': header line '# rigid_body_inertia: included|excluded' is missing",
-                                    src, run.name));
+    throw DataFileError(fmt::format(
+        "{}: run '{}': header line '# rigid_body_inertia: included|excluded' is missing", src,
+        run.name));
   }
   run.includes_rigid_body_inertia = ParseRigidBodyInertia(rbi->first, where(rbi->second));
   for (const auto& [key, value] : attributes) {
@@ -291,9 +311,10 @@ CaptiveRun ReadRunCsv(const fs::path& path) {
                        std::any_of(kMotionAttributes.begin(), kMotionAttributes.end(),
                                    [&](const MotionAttribute& a) { return a.key == key; });
     if (!known) {
-      throw DataFileError(fmt::format("{}: unknown header key '{}'; valid keys: run, kind, U, beta, y_a, psi_a, "
-                                      "omega, r_prime, t_ramp, rigid_body_inertia",
-                                      where(value.second), key));
+      throw DataFileError(
+          fmt::format("{}: unknown header key '{}'; valid keys: run, kind, U, beta, y_a, psi_a, "
+                      "omega, r_prime, t_ramp, rigid_body_inertia",
+                      where(value.second), key));
     }
   }
   return run;

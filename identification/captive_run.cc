@@ -11,17 +11,19 @@ namespace kelvin::ident {
 
 namespace {
 
-constexpr std::array<std::string_view, 5> kKindNames = {"static_drift", "pure_sway", "pure_yaw", "yaw_drift",
-                                                        "circular_motion"};
+constexpr std::array<std::string_view, 5> kKindNames = {"static_drift", "pure_sway", "pure_yaw",
+                                                        "yaw_drift", "circular_motion"};
 
 [[noreturn]] void Fail(std::string_view source, std::string_view run, std::string_view what) {
   throw DataFileError(fmt::format("{}: run '{}': {}", source, run, what));
 }
 
-void RequirePositive(std::string_view source, const CaptiveRun& run, std::string_view key, double value) {
+void RequirePositive(std::string_view source, const CaptiveRun& run, std::string_view key,
+                     double value) {
   if (!(value > 0) || !std::isfinite(value)) {
-    Fail(source, run.name, fmt::format("attribute '{}' = {}: expected a finite positive number for {} motion", key,
-                                       value, MotionKindName(run.motion.kind)));
+    Fail(source, run.name,
+         fmt::format("attribute '{}' = {}: expected a finite positive number for {} motion", key,
+                     value, MotionKindName(run.motion.kind)));
   }
 }
 
@@ -38,10 +40,13 @@ MotionKind ParseMotionKind(std::string_view name, std::string_view where) {
 }
 
 bool IsHarmonic(MotionKind kind) {
-  return kind == MotionKind::kPureSway || kind == MotionKind::kPureYaw || kind == MotionKind::kYawDrift;
+  return kind == MotionKind::kPureSway || kind == MotionKind::kPureYaw ||
+         kind == MotionKind::kYawDrift;
 }
 
-double MotionParameters::Period() const { return IsHarmonic(kind) ? 2.0 * std::numbers::pi / omega : 0.0; }
+double MotionParameters::Period() const {
+  return IsHarmonic(kind) ? 2.0 * std::numbers::pi / omega : 0.0;
+}
 
 BodyKinematics KinematicsAt(const MotionParameters& m, double Lpp, double t) {
   BodyKinematics k;
@@ -106,7 +111,8 @@ AnalysisWindow SelectWindow(const CaptiveRun& run, std::string_view source) {
     w.end = t.size();
     if (w.end - w.begin < static_cast<std::size_t>(kMinSteadySamples)) {
       Fail(source, run.name,
-           fmt::format("channels 'X', 'Y', 'N': {} samples after the ramp-up (t >= t_ramp = {} s, last t = {} s); "
+           fmt::format("channels 'X', 'Y', 'N': {} samples after the ramp-up (t >= t_ramp = {} s, "
+                       "last t = {} s); "
                        "a steady run needs at least {}",
                        w.end - w.begin, run.motion.t_ramp, t_end, kMinSteadySamples));
     }
@@ -124,9 +130,10 @@ AnalysisWindow SelectWindow(const CaptiveRun& run, std::string_view source) {
   w.periods = static_cast<int>(k1 - std::max(k0, 0.0));
   if (w.periods < 1) {
     Fail(source, run.name,
-         fmt::format("channels 'X', 'Y', 'N': less than one whole period ({:.4g} s) after the ramp-up "
-                     "(t_ramp = {} s, last t = {} s)",
-                     T, run.motion.t_ramp, t_end));
+         fmt::format(
+             "channels 'X', 'Y', 'N': less than one whole period ({:.4g} s) after the ramp-up "
+             "(t_ramp = {} s, last t = {} s)",
+             T, run.motion.t_ramp, t_end));
   }
   const double t0 = std::max(k0, 0.0) * T - tol;
   const double t1 = k1 * T - tol;  // the sample on the closing boundary belongs to the next period
@@ -135,8 +142,8 @@ AnalysisWindow SelectWindow(const CaptiveRun& run, std::string_view source) {
   while (w.end < t.size() && t[w.end] < t1) ++w.end;
   if (t.front() > t0 + 2.0 * tol) {
     Fail(source, run.name,
-         fmt::format("channel 'time' starts at {} s, after the first analysed period begins ({} s)", t.front(),
-                     t0 + tol));
+         fmt::format("channel 'time' starts at {} s, after the first analysed period begins ({} s)",
+                     t.front(), t0 + tol));
   }
   return w;
 }
@@ -147,22 +154,38 @@ void ValidateCampaign(const CaptiveCampaign& c, std::string_view source) {
       {{"Lpp", s.Lpp}, {"d", s.d}, {"rho", s.rho}, {"mass", s.mass}, {"I_zG", s.I_zG}}};
   for (const auto& [key, value] : positive) {
     if (!(value > 0) || !std::isfinite(value)) {
-      throw DataFileError(
-          fmt::format("{}: ship attribute '{}' = {}: expected a finite positive number", source, key, value));
+      throw DataFileError(fmt::format(
+          "{}: ship attribute '{}' = {}: expected a finite positive number", source, key, value));
     }
   }
   if (!std::isfinite(s.x_G)) {
-    throw DataFileError(fmt::format("{}: ship attribute 'x_G' = {}: expected a finite number", source, s.x_G));
+    throw DataFileError(
+        fmt::format("{}: ship attribute 'x_G' = {}: expected a finite number", source, s.x_G));
   }
   if (c.runs.empty()) throw DataFileError(fmt::format("{}: the campaign holds no runs", source));
+  for (std::size_t r = 0; r < c.runs.size(); ++r) {
+    const std::string& name = c.runs[r].name;
+    if (name.empty() || name.find('/') != std::string::npos) {
+      throw DataFileError(
+          fmt::format("{}: run {}: name '{}' is empty or contains '/'", source, r, name));
+    }
+    for (std::size_t q = 0; q < r; ++q) {
+      if (c.runs[q].name == name) {
+        throw DataFileError(
+            fmt::format("{}: run '{}' appears twice (runs {} and {})", source, name, q, r));
+      }
+    }
+  }
   for (const CaptiveRun& run : c.runs) {
     const MotionParameters& m = run.motion;
     RequirePositive(source, run, "U", m.U);
     if (!std::isfinite(m.beta) || std::abs(m.beta) >= 0.5 * std::numbers::pi) {
-      Fail(source, run.name, fmt::format("attribute 'beta' = {}: expected |beta| < pi/2 rad", m.beta));
+      Fail(source, run.name,
+           fmt::format("attribute 'beta' = {}: expected |beta| < pi/2 rad", m.beta));
     }
     if (!(m.t_ramp >= 0) || !std::isfinite(m.t_ramp)) {
-      Fail(source, run.name, fmt::format("attribute 't_ramp' = {}: expected a finite number >= 0 s", m.t_ramp));
+      Fail(source, run.name,
+           fmt::format("attribute 't_ramp' = {}: expected a finite number >= 0 s", m.t_ramp));
     }
     if (m.kind == MotionKind::kStaticDrift) RequirePositive(source, run, "t_ramp", m.t_ramp);
     if (IsHarmonic(m.kind)) RequirePositive(source, run, "omega", m.omega);
@@ -171,27 +194,32 @@ void ValidateCampaign(const CaptiveCampaign& c, std::string_view source) {
       RequirePositive(source, run, "psi_a", m.psi_a);
     }
     if (m.kind == MotionKind::kCircularMotion && !(std::isfinite(m.r_prime) && m.r_prime != 0)) {
-      Fail(source, run.name, fmt::format("attribute 'r_prime' = {}: expected a finite non-zero yaw rate", m.r_prime));
+      Fail(source, run.name,
+           fmt::format("attribute 'r_prime' = {}: expected a finite non-zero yaw rate", m.r_prime));
     }
     const std::size_t n = run.time.size();
-    if (n < 2) Fail(source, run.name, fmt::format("channel 'time' has {} samples; expected at least 2", n));
+    if (n < 2)
+      Fail(source, run.name, fmt::format("channel 'time' has {} samples; expected at least 2", n));
     for (std::size_t i = 0; i < n; ++i) {
       if (!std::isfinite(run.time[i]) || (i > 0 && !(run.time[i] > run.time[i - 1]))) {
         Fail(source, run.name,
-             fmt::format("channel 'time': sample {} (t = {}) is not finite or not after the previous one", i,
-                         run.time[i]));
+             fmt::format(
+                 "channel 'time': sample {} (t = {}) is not finite or not after the previous one",
+                 i, run.time[i]));
       }
     }
     for (int c_i = 0; c_i < 3; ++c_i) {
       const std::vector<double>& f = run.force[c_i];
       if (f.size() != n) {
         Fail(source, run.name,
-             fmt::format("channel '{}' has {} samples but 'time' has {}", kChannelNames[c_i], f.size(), n));
+             fmt::format("channel '{}' has {} samples but 'time' has {}", kChannelNames[c_i],
+                         f.size(), n));
       }
       for (std::size_t i = 0; i < n; ++i) {
         if (!std::isfinite(f[i])) {
           Fail(source, run.name,
-               fmt::format("channel '{}': sample {} (t = {} s) is {}", kChannelNames[c_i], i, run.time[i], f[i]));
+               fmt::format("channel '{}': sample {} (t = {} s) is {}", kChannelNames[c_i], i,
+                           run.time[i], f[i]));
         }
       }
     }

@@ -81,7 +81,7 @@ struct CaptiveRun {
   // reads: the hydrodynamic force minus the rigid-body inertia force
   // (F_hyd - M_RB a). False when they are the hydrodynamic force alone (CFD).
   bool includes_rigid_body_inertia = false;
-  std::vector<double> time;  // s, strictly increasing
+  std::vector<double> time;                  // s, strictly increasing
   std::array<std::vector<double>, 3> force;  // X [N], Y [N], N [N m]
 };
 

@@ -18,21 +18,36 @@ std::string Number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v
 
 }  // namespace
 
-bool ClassicalCounterpart(const std::string& name, const sim::HullCoefficients<double>& c, double* value) {
-  if (name == "Y_v") *value = c.Y_v;
-  else if (name == "N_v") *value = c.N_v;
-  else if (name == "Y_vdot") *value = -c.m_y;
-  else if (name == "N_vdot") *value = 0.0;
-  else if (name == "Y_r") *value = c.Y_r - c.m_x;
-  else if (name == "N_r") *value = c.N_r;
-  else if (name == "Y_rdot") *value = 0.0;
-  else if (name == "N_rdot") *value = -c.J_z;
-  else if (name == "Y_vvv") *value = c.Y_vvv;
-  else if (name == "N_vvv") *value = c.N_vvv;
-  else if (name == "R0_prime") *value = c.R0;
-  else if (name == "X_vv") *value = c.X_vv;
-  else if (name == "X_vvvv") *value = c.X_vvvv;
-  else return false;
+bool ClassicalCounterpart(const std::string& name, const sim::HullCoefficients<double>& c,
+                          double* value) {
+  if (name == "Y_v")
+    *value = c.Y_v;
+  else if (name == "N_v")
+    *value = c.N_v;
+  else if (name == "Y_vdot")
+    *value = -c.m_y;
+  else if (name == "N_vdot")
+    *value = 0.0;
+  else if (name == "Y_r")
+    *value = c.Y_r - c.m_x;
+  else if (name == "N_r")
+    *value = c.N_r;
+  else if (name == "Y_rdot")
+    *value = 0.0;
+  else if (name == "N_rdot")
+    *value = -c.J_z;
+  else if (name == "Y_vvv")
+    *value = c.Y_vvv;
+  else if (name == "N_vvv")
+    *value = c.N_vvv;
+  else if (name == "R0_prime")
+    *value = c.R0;
+  else if (name == "X_vv")
+    *value = c.X_vv;
+  else if (name == "X_vvvv")
+    *value = c.X_vvvv;
+  else
+    return false;
   return true;
 }
 
@@ -40,18 +55,18 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
   const JointFitResult& fit = *rep.fit;
   YAML::Emitter y;
   y << YAML::Comment(
-      "kelvin identify: MMG hull derivatives and added masses, prime system (Yasukawa & Yoshimura 2015).\n"
+      "kelvin identify: MMG hull derivatives and added masses, prime system (Yasukawa & Yoshimura "
+      "2015).\n"
       "Forces / (0.5 rho L d U^2), moment / (0.5 rho L^2 d U^2), masses / (0.5 rho L^2 d),\n"
-      "J_z / (0.5 rho L^4 d). The hull: section uses the keys of a ship file's hull: section.\n"
+      "J_z / (0.5 rho L^4 d). The hull: section uses the keys of a ship file's hull: section;\n"
+      "the layout is the derivative-set contract of bridge/derivative_set.h.\n"
       "Standard errors are 1 sigma from ceres::Covariance; null = not estimated.");
   y << YAML::BeginMap;
-  y << YAML::Key << "identification" << YAML::Value << YAML::BeginMap;
-  y << YAML::Key << "source" << YAML::Value << rep.source;
+  y << YAML::Key << "derivative_set" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "name" << YAML::Value
+    << rep.campaign->ship.name + " hull derivatives identified by kelvin identify";
   y << YAML::Key << "ship" << YAML::Value << rep.campaign->ship.name;
-  y << YAML::Key << "runs" << YAML::Value << rep.campaign->runs.size();
-  y << YAML::Key << "residuals" << YAML::Value << fit.residuals;
-  y << YAML::Key << "converged" << YAML::Value << fit.converged;
-  y << YAML::Key << "solver" << YAML::Value << fit.solver_report;
+  y << YAML::Key << "source" << YAML::Value << rep.source;
   y << YAML::EndMap;
 
   y << YAML::Key << "hull" << YAML::Value << YAML::BeginMap;
@@ -61,7 +76,7 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
   }
   y << YAML::EndMap;
 
-  y << YAML::Key << "std_error" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "standard_errors" << YAML::Value << YAML::BeginMap;
   for (int i = 0; i < kCoefficientCount; ++i) {
     y << YAML::Key << std::string(kNames[i]) << YAML::Value;
     if (std::isfinite(fit.std_error[i])) {
@@ -72,6 +87,11 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
   }
   y << YAML::EndMap;
 
+  y << YAML::Key << "fit" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "runs" << YAML::Value << rep.campaign->runs.size();
+  y << YAML::Key << "residuals" << YAML::Value << fit.residuals;
+  y << YAML::Key << "converged" << YAML::Value << fit.converged;
+  y << YAML::Key << "solver" << YAML::Value << fit.solver_report;
   y << YAML::Key << "status" << YAML::Value << YAML::BeginMap;
   for (int i = 0; i < kCoefficientCount; ++i) {
     std::string s(CoefficientStatusName(fit.status[i]));
@@ -84,16 +104,16 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
   for (const std::string& w : fit.warnings) y << w;
   y << YAML::EndSeq;
 
-  y << YAML::Key << "run_residuals" << YAML::Value << YAML::Comment("nondimensional, per channel X, Y, N")
-    << YAML::BeginSeq;
+  y << YAML::Key << "run_residuals" << YAML::Value
+    << YAML::Comment("nondimensional, per channel X, Y, N") << YAML::BeginSeq;
   for (const RunFitStatistics& st : fit.runs) {
     y << YAML::BeginMap;
     y << YAML::Key << "run" << YAML::Value << st.run;
     y << YAML::Key << "kind" << YAML::Value << st.kind;
     y << YAML::Key << "samples" << YAML::Value << st.samples;
     auto triple = [&](const char* key, const std::array<double, 3>& v) {
-      y << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << Number(v[0]) << Number(v[1])
-        << Number(v[2]) << YAML::EndSeq;
+      y << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << Number(v[0])
+        << Number(v[1]) << Number(v[2]) << YAML::EndSeq;
     };
     triple("rms_residual", st.rms_residual);
     triple("max_residual", st.max_residual);
@@ -105,7 +125,8 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
 
   if (rep.pmm) {
     y << YAML::Key << "pmm_cross_check" << YAML::Value
-      << YAML::Comment("classical per-test derivatives and the joint-fit value they correspond to") << YAML::BeginSeq;
+      << YAML::Comment("classical per-test derivatives and the joint-fit value they correspond to")
+      << YAML::BeginSeq;
     for (const ClassicalEstimate& e : rep.pmm->estimates) {
       y << YAML::Flow << YAML::BeginMap;
       y << YAML::Key << "name" << YAML::Value << e.name;
@@ -120,6 +141,7 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
     }
     y << YAML::EndSeq;
   }
+  y << YAML::EndMap;  // fit
   y << YAML::EndMap;
   return std::string(y.c_str()) + "\n";
 }
@@ -139,17 +161,21 @@ void WriteDerivativeH5(const IdentificationReport& rep, const std::filesystem::p
   std::vector<std::string> names(kNames.begin(), kNames.end());
   w.WriteStrings("/names", names, "coefficient names (HullCoefficients kNames order)");
   std::vector<std::string> status;
-  for (int i = 0; i < kCoefficientCount; ++i) status.emplace_back(CoefficientStatusName(fit.status[i]));
+  for (int i = 0; i < kCoefficientCount; ++i)
+    status.emplace_back(CoefficientStatusName(fit.status[i]));
   w.WriteStrings("/status", status, "identified, not identifiable or fixed, per coefficient");
   std::vector<double> values(fit.coefficients.Data(), fit.coefficients.Data() + kCoefficientCount);
-  w.WriteArray("/coefficients", values, {kCoefficientCount}, "-", "prime hull derivatives and added masses");
+  w.WriteArray("/coefficients", values, {kCoefficientCount}, "-",
+               "prime hull derivatives and added masses");
   std::vector<double> se(fit.std_error.begin(), fit.std_error.end());
-  w.WriteArray("/std_error", se, {kCoefficientCount}, "-", "1-sigma standard errors (NaN = not estimated)");
+  w.WriteArray("/std_error", se, {kCoefficientCount}, "-",
+               "1-sigma standard errors (NaN = not estimated)");
   std::vector<double> cov(fit.covariance.data(), fit.covariance.data() + fit.covariance.size());
   w.WriteArray("/covariance", cov, {kCoefficientCount, kCoefficientCount}, "-",
                "covariance of the coefficients (symmetric; zero for held coefficients)");
   std::vector<double> cor(fit.correlation.data(), fit.correlation.data() + fit.correlation.size());
-  w.WriteArray("/correlation", cor, {kCoefficientCount, kCoefficientCount}, "-", "correlation matrix");
+  w.WriteArray("/correlation", cor, {kCoefficientCount, kCoefficientCount}, "-",
+               "correlation matrix");
   w.WriteStrings("/warnings", fit.warnings.empty() ? std::vector<std::string>{""} : fit.warnings,
                  "identifiability and solver warnings");
   for (std::size_t r = 0; r < c.runs.size(); ++r) {
@@ -170,14 +196,16 @@ void WriteDerivativeH5(const IdentificationReport& rep, const std::filesystem::p
       const std::string name(kChannelNames[ch]);
       w.WriteArray(g + "/measured_" + name, mp, {mp.size()}, "-",
                    "measured hydrodynamic force, nondimensional (rigid-body inertia removed)");
-      w.WriteArray(g + "/fitted_" + name, fitted[ch], {fitted[ch].size()}, "-", "fitted force, nondimensional");
+      w.WriteArray(g + "/fitted_" + name, fitted[ch], {fitted[ch].size()}, "-",
+                   "fitted force, nondimensional");
     }
     if (r < fit.runs.size()) {
       const RunFitStatistics& st = fit.runs[r];
-      w.WriteArray(g + "/rms_residual", std::vector<double>(st.rms_residual.begin(), st.rms_residual.end()), {3},
-                   "-", "RMS residual X, Y, N over the analysis window");
-      w.WriteArray(g + "/noise_sigma", std::vector<double>(st.sigma.begin(), st.sigma.end()), {3}, "-",
-                   "noise level used as weight, X, Y, N");
+      w.WriteArray(g + "/rms_residual",
+                   std::vector<double>(st.rms_residual.begin(), st.rms_residual.end()), {3}, "-",
+                   "RMS residual X, Y, N over the analysis window");
+      w.WriteArray(g + "/noise_sigma", std::vector<double>(st.sigma.begin(), st.sigma.end()), {3},
+                   "-", "noise level used as weight, X, Y, N");
     }
   }
   w.Commit();

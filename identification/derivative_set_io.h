@@ -1,6 +1,7 @@
-// Output of an identification: the derivative set as YAML for humans (its
-// `hull:` section has the keys of a ship file's `hull:` section, so it can be
-// pasted into data/ships/<ship>.yaml) and as HDF5 with the full covariance
+// Output of an identification: the derivative set as YAML for humans, in the
+// derivative-set layout the bridge loads (bridge/derivative_set.h:
+// derivative_set, hull, standard_errors, fit; the `hull:` section has the
+// keys of a ship file's `hull:` section) and as HDF5 with the full covariance
 // and the measured and fitted forces of every run (for
 // tools/plot_identification.py). Both files are written atomically.
 #pragma once
@@ -28,6 +29,7 @@ void WriteDerivativeH5(const IdentificationReport& report, const std::filesystem
 // The joint-fit value a classical PMM derivative corresponds to (see
 // pmm_analysis.h): e.g. "Y_r" -> Y_r - m'_x, "N_rdot" -> -J'_z. False for
 // names without a counterpart.
-bool ClassicalCounterpart(const std::string& name, const sim::HullCoefficients<double>& c, double* value);
+bool ClassicalCounterpart(const std::string& name, const sim::HullCoefficients<double>& c,
+                          double* value);
 
 }  // namespace kelvin::ident

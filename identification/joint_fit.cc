@@ -70,8 +70,8 @@ struct RunData {
 };
 
 // Whitened Jacobian rows (3 per sample) and residuals of every sample.
-void EvaluateAll(const sim::ShipParameters& ship, const std::vector<RunData>& runs, const double* theta,
-                 Eigen::MatrixXd* jacobian, Eigen::VectorXd* residual) {
+void EvaluateAll(const sim::ShipParameters& ship, const std::vector<RunData>& runs,
+                 const double* theta, Eigen::MatrixXd* jacobian, Eigen::VectorXd* residual) {
   using Jet = ceres::Jet<double, kP>;
   std::array<Jet, kP> jt;
   for (int i = 0; i < kP; ++i) jt[i] = Jet(theta[i], i);
@@ -124,6 +124,8 @@ std::string_view CoefficientStatusName(CoefficientStatus status) {
       return "not identifiable";
     case CoefficientStatus::kFixed:
       return "fixed";
+    case CoefficientStatus::kAtBound:
+      return "at bound";
   }
   return "?";
 }
@@ -131,44 +133,59 @@ std::string_view CoefficientStatusName(CoefficientStatus status) {
 void JointFitOptions::Validate() const {
   auto check_name = [](const std::string& what, const std::string& name) {
     if (CoefficientIndex(name) < 0) {
-      throw ArgumentError(fmt::format("joint fit option '{}': unknown coefficient '{}'; valid names: {}", what, name,
-                                      fmt::join(kNames, ", ")));
+      throw ArgumentError(
+          fmt::format("joint fit option '{}': unknown coefficient '{}'; valid names: {}", what,
+                      name, fmt::join(kNames, ", ")));
     }
   };
   for (const auto& [name, prior] : priors) {
     check_name("priors", name);
     if (!(prior.sigma > 0) || !std::isfinite(prior.sigma) || !std::isfinite(prior.mean)) {
-      throw ArgumentError(fmt::format("joint fit option 'priors.{}': mean {} sigma {}: expected a finite mean and a "
-                                      "finite positive sigma",
-                                      name, prior.mean, prior.sigma));
+      throw ArgumentError(fmt::format(
+          "joint fit option 'priors.{}': mean {} sigma {}: expected a finite mean and a "
+          "finite positive sigma",
+          name, prior.mean, prior.sigma));
     }
   }
   for (const auto& [name, value] : fixed) {
     check_name("fixed", name);
     if (!std::isfinite(value)) {
-      throw ArgumentError(fmt::format("joint fit option 'fixed.{}' = {}: expected a finite value", name, value));
+      throw ArgumentError(
+          fmt::format("joint fit option 'fixed.{}' = {}: expected a finite value", name, value));
     }
   }
   auto positive = [](std::string_view key, double v) {
     if (!(v > 0) || !std::isfinite(v)) {
-      throw ArgumentError(fmt::format("joint fit option '{}' = {}: expected a finite positive number", key, v));
+      throw ArgumentError(
+          fmt::format("joint fit option '{}' = {}: expected a finite positive number", key, v));
     }
   };
   positive("loss_scale", loss_scale);
   positive("min_noise_fraction", min_noise_fraction);
   positive("max_relative_std_error", max_relative_std_error);
   positive("null_space_tolerance", null_space_tolerance);
+  for (const auto& [name, b] : bounds) {
+    check_name("bounds", name);
+    if (!(b.lower < b.upper) || std::isnan(b.lower) || std::isnan(b.upper)) {
+      throw ArgumentError(
+          fmt::format("joint fit option 'bounds.{}': [{}, {}]: expected lower < upper", name,
+                      b.lower, b.upper));
+    }
+  }
   if (!(correlation_limit > 0 && correlation_limit < 1)) {
     throw ArgumentError(
-        fmt::format("joint fit option 'correlation_limit' = {}: expected a number in (0, 1)", correlation_limit));
+        fmt::format("joint fit option 'correlation_limit' = {}: expected a number in (0, 1)",
+                    correlation_limit));
   }
   if (max_iterations < 1) {
-    throw ArgumentError(fmt::format("joint fit option 'max_iterations' = {}: expected at least 1", max_iterations));
+    throw ArgumentError(
+        fmt::format("joint fit option 'max_iterations' = {}: expected at least 1", max_iterations));
   }
 }
 
-std::array<std::vector<double>, 3> ModelForcesPrime(const CaptiveShip& ship, const CaptiveRun& run,
-                                                    const sim::HullCoefficients<double>& coefficients) {
+std::array<std::vector<double>, 3> ModelForcesPrime(
+    const CaptiveShip& ship, const CaptiveRun& run,
+    const sim::HullCoefficients<double>& coefficients) {
   const sim::MmgModel<double> model(HullShipFrom(ship), coefficients);
   const double q = ship.ForceScale() * run.motion.U * run.motion.U;
   std::array<std::vector<double>, 3> out;
@@ -221,13 +238,15 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
   std::array<double, 3> campaign_rms{};
   std::size_t campaign_samples = 0;
   for (const RunData& rd : runs) {
-    for (int c = 0; c < 3; ++c) campaign_rms[c] += rd.rms_measured[c] * rd.rms_measured[c] * rd.samples.size();
+    for (int c = 0; c < 3; ++c)
+      campaign_rms[c] += rd.rms_measured[c] * rd.rms_measured[c] * rd.samples.size();
     campaign_samples += rd.samples.size();
   }
   for (int c = 0; c < 3; ++c) {
     campaign_rms[c] = std::sqrt(campaign_rms[c] / static_cast<double>(campaign_samples));
     if (!(campaign_rms[c] > 0)) {
-      throw DataFileError(fmt::format("{}: channel '{}' is identically zero in every run", source, kChannelNames[c]));
+      throw DataFileError(fmt::format("{}: channel '{}' is identically zero in every run", source,
+                                      kChannelNames[c]));
     }
   }
   std::vector<std::array<double, 3>> reference(runs.size());
@@ -284,20 +303,22 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     ceres::Problem problem(po);
     for (const RunData& r : runs) {
       for (const Sample& s : r.samples) {
-        auto* cost =
-            new ceres::AutoDiffCostFunction<SampleResidual, 3, kP>(new SampleResidual{&hull_ship, &s, &scale});
+        auto* cost = new ceres::AutoDiffCostFunction<SampleResidual, 3, kP>(
+            new SampleResidual{&hull_ship, &s, &scale});
         ceres::LossFunction* loss = nullptr;
-        if (options.loss == JointFitOptions::Loss::kHuber) loss = new ceres::HuberLoss(options.loss_scale);
-        if (options.loss == JointFitOptions::Loss::kCauchy) loss = new ceres::CauchyLoss(options.loss_scale);
+        if (options.loss == JointFitOptions::Loss::kHuber)
+          loss = new ceres::HuberLoss(options.loss_scale);
+        if (options.loss == JointFitOptions::Loss::kCauchy)
+          loss = new ceres::CauchyLoss(options.loss_scale);
         problem.AddResidualBlock(cost, loss, phi.data());
       }
     }
     for (const auto& [name, prior] : options.priors) {
       const int i = CoefficientIndex(name);
       if (held[i]) continue;
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<PriorResidual, 1, kP>(new PriorResidual{i, prior, scale[i]}), nullptr,
-          phi.data());
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 1, kP>(
+                                   new PriorResidual{i, prior, scale[i]}),
+                               nullptr, phi.data());
     }
     std::vector<int> held_indices;
     for (int i = 0; i < kP; ++i) {
@@ -307,6 +328,13 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
       problem.SetParameterBlockConstant(phi.data());
     } else if (!held_indices.empty()) {
       problem.SetManifold(phi.data(), new ceres::SubsetManifold(kP, held_indices));
+    }
+    for (const auto& [name, b] : options.bounds) {
+      const int i = CoefficientIndex(name);
+      if (held[i]) continue;
+      phi[i] = std::clamp(theta[i], b.lower, b.upper) / scale[i];  // start inside the box
+      if (std::isfinite(b.lower)) problem.SetParameterLowerBound(phi.data(), i, b.lower / scale[i]);
+      if (std::isfinite(b.upper)) problem.SetParameterUpperBound(phi.data(), i, b.upper / scale[i]);
     }
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
@@ -403,6 +431,25 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
       for (int c = 0; c < 3; ++c) result.runs[r].sigma[c] = sigma[r][c];
     }
 
+    // Coefficients that ended on a bound: hold them there and refit.
+    bool any_bound = false;
+    for (const auto& [name, b] : options.bounds) {
+      const int i = CoefficientIndex(name);
+      if (held[i]) continue;
+      for (const double edge : {b.lower, b.upper}) {
+        if (std::isfinite(edge) &&
+            std::abs(theta[i] - edge) <= 1e-9 * std::max(1.0, std::abs(edge))) {
+          held[i] = true;
+          any_bound = true;
+          theta[i] = edge;
+          result.status[i] = CoefficientStatus::kAtBound;
+          result.note[i] = fmt::format("ended on its bound {}; held there", edge);
+          result.warnings.push_back(fmt::format("{} {}", kNames[i], result.note[i]));
+        }
+      }
+    }
+    if (any_bound) continue;
+
     // Null space of the normalized whitened normal matrix.
     Eigen::MatrixXd jac;
     EvaluateAll(hull_ship, runs, theta.data(), &jac, nullptr);
@@ -419,7 +466,8 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
       for (int a = 0; a < nf; ++a) {
         for (int b = 0; b < nf; ++b) {
           const double na = norm(a), nb = norm(b);
-          g(a, b) = (na > 0 && nb > 0) ? jac.col(free_idx[a]).dot(jac.col(free_idx[b])) / (na * nb) : (a == b);
+          g(a, b) = (na > 0 && nb > 0) ? jac.col(free_idx[a]).dot(jac.col(free_idx[b])) / (na * nb)
+                                       : (a == b);
         }
       }
       for (const auto& [name, prior] : options.priors) {
@@ -454,7 +502,8 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     }
     // Standard errors and correlations.
     for (int i = 0; i < kP; ++i) {
-      result.std_error[i] = held[i] ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(result.covariance(i, i));
+      result.std_error[i] =
+          held[i] ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(result.covariance(i, i));
     }
     result.correlation.setZero();
     for (int i = 0; i < kP; ++i) {
@@ -468,8 +517,9 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
       const double rel = result.std_error[i] / std::abs(theta[i]);
       if (!(rel <= options.max_relative_std_error)) {
         flag[i] = true;
-        result.note[i] = fmt::format("standard error {:.3g} is {:.0f}% of the value {:.4g} (limit {:.0f}%)",
-                                     result.std_error[i], 100 * rel, theta[i], 100 * options.max_relative_std_error);
+        result.note[i] = fmt::format(
+            "standard error {:.3g} is {:.0f}% of the value {:.4g} (limit {:.0f}%)",
+            result.std_error[i], 100 * rel, theta[i], 100 * options.max_relative_std_error);
       }
     }
     bool any_flag = false;
@@ -486,7 +536,8 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
       result.status[i] = CoefficientStatus::kNotIdentifiable;
       const auto prior = options.priors.find(std::string(kNames[i]));
       theta[i] = prior != options.priors.end() ? prior->second.mean : 0.0;
-      result.note[i] += prior != options.priors.end() ? "; held at its prior mean" : "; term dropped (held at 0)";
+      result.note[i] +=
+          prior != options.priors.end() ? "; held at its prior mean" : "; term dropped (held at 0)";
     }
   }
 
@@ -494,7 +545,8 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     result.coefficients[i] = theta[i];
     if (!result.Identified(i)) result.std_error[i] = std::numeric_limits<double>::quiet_NaN();
     if (result.status[i] == CoefficientStatus::kNotIdentifiable) {
-      result.warnings.push_back(fmt::format("{} is not identifiable from these tests: {}", kNames[i], result.note[i]));
+      result.warnings.push_back(
+          fmt::format("{} is not identifiable from these tests: {}", kNames[i], result.note[i]));
     }
   }
   for (int i = 0; i < kP; ++i) {
@@ -502,14 +554,16 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
       if (!result.Identified(i) || !result.Identified(j)) continue;
       if (std::abs(result.correlation(i, j)) > options.correlation_limit) {
         result.correlated.push_back({i, j, result.correlation(i, j)});
-        result.warnings.push_back(fmt::format("{} and {} are not separable by these tests (correlation {:+.3f})",
-                                              kNames[i], kNames[j], result.correlation(i, j)));
+        result.warnings.push_back(
+            fmt::format("{} and {} are not separable by these tests (correlation {:+.3f})",
+                        kNames[i], kNames[j], result.correlation(i, j)));
       }
     }
   }
   result.residuals = 0;
   for (const RunData& r : runs) result.residuals += 3 * static_cast<int>(r.samples.size());
-  if (!result.converged) result.warnings.push_back("the solver did not converge: " + result.solver_report);
+  if (!result.converged)
+    result.warnings.push_back("the solver did not converge: " + result.solver_report);
   return result;
 }
 

@@ -18,11 +18,17 @@
 // with |correlation| > correlation_limit get a warning. With
 // fix_unidentifiable, flagged coefficients are held at their prior mean (or
 // 0 without a prior: the term is dropped) and the fit is repeated, so the
-// output never carries confident nonsense.
+// output never carries confident nonsense. The default limit 0.25 asks each
+// kept coefficient to lie at least 4 standard errors from zero.
+//
+// Bounds (default: added masses >= 0, which the simulator requires) are
+// enforced by Ceres; a coefficient that ends on its bound is held there and
+// the fit repeated, so the covariance is that of the free coefficients.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -53,6 +59,14 @@ struct JointFitOptions {
   // kNames: "Y_v", "m_x_prime", ...).
   std::map<std::string, Prior> priors;
   std::map<std::string, double> fixed;
+  struct Bounds {
+    double lower = -std::numeric_limits<double>::infinity();
+    double upper = std::numeric_limits<double>::infinity();
+  };
+  std::map<std::string, Bounds> bounds = {
+      {"m_x_prime", {0.0, std::numeric_limits<double>::infinity()}},
+      {"m_y_prime", {0.0, std::numeric_limits<double>::infinity()}},
+      {"J_z_prime", {0.0, std::numeric_limits<double>::infinity()}}};
   double max_relative_std_error = 0.25;
   double correlation_limit = 0.95;
   // Reciprocal condition (eigenvalue ratio of the normalized normal matrix)
@@ -70,6 +84,7 @@ enum class CoefficientStatus {
   kIdentified,       // estimated from the data
   kNotIdentifiable,  // flagged; held at its prior mean or 0 when fix_unidentifiable
   kFixed,            // held at a user value
+  kAtBound,          // ended on one of its bounds and held there
 };
 std::string_view CoefficientStatusName(CoefficientStatus status);
 
@@ -88,7 +103,8 @@ struct JointFitResult {
   std::array<double, kCoefficientCount> std_error{};  // NaN unless kIdentified
   std::array<CoefficientStatus, kCoefficientCount> status{};
   std::array<std::string, kCoefficientCount> note;  // why a coefficient was flagged
-  Eigen::Matrix<double, kCoefficientCount, kCoefficientCount> covariance;  // zero rows for held coefficients
+  Eigen::Matrix<double, kCoefficientCount, kCoefficientCount>
+      covariance;  // zero rows for held coefficients
   Eigen::Matrix<double, kCoefficientCount, kCoefficientCount> correlation;
   struct CorrelatedPair {
     int a = 0, b = 0;
@@ -115,7 +131,8 @@ int CoefficientIndex(std::string_view name);
 
 // Modelled nondimensional hydrodynamic forces of a run at every sample (for
 // plots and residual checks), with the given coefficients.
-std::array<std::vector<double>, 3> ModelForcesPrime(const CaptiveShip& ship, const CaptiveRun& run,
-                                                    const sim::HullCoefficients<double>& coefficients);
+std::array<std::vector<double>, 3> ModelForcesPrime(
+    const CaptiveShip& ship, const CaptiveRun& run,
+    const sim::HullCoefficients<double>& coefficients);
 
 }  // namespace kelvin::ident

@@ -9,11 +9,13 @@ namespace kelvin::ident {
 double HarmonicComponents::Amplitude() const { return std::hypot(in_phase, quadrature); }
 double HarmonicComponents::Phase() const { return std::atan2(quadrature, in_phase); }
 
-std::array<std::vector<double>, 3> HydrodynamicForces(const CaptiveShip& ship, const CaptiveRun& run) {
+std::array<std::vector<double>, 3> HydrodynamicForces(const CaptiveShip& ship,
+                                                      const CaptiveRun& run) {
   std::array<std::vector<double>, 3> f = run.force;
   if (!run.includes_rigid_body_inertia) return f;
   for (std::size_t i = 0; i < run.time.size(); ++i) {
-    const std::array<double, 3> rb = RigidBodyInertia(ship, KinematicsAt(run.motion, ship.Lpp, run.time[i]));
+    const std::array<double, 3> rb =
+        RigidBodyInertia(ship, KinematicsAt(run.motion, ship.Lpp, run.time[i]));
     for (int c = 0; c < 3; ++c) f[c][i] += rb[c];
   }
   return f;
@@ -58,7 +60,8 @@ RunAnalysis AnalyseRun(const CaptiveShip& ship, const CaptiveRun& run, std::stri
 namespace {
 
 // Least squares y = sum_j c_j x^p_j over the points; empty when underdetermined.
-std::vector<double> PowerFit(const std::vector<double>& x, const std::vector<double>& y, const std::vector<int>& powers) {
+std::vector<double> PowerFit(const std::vector<double>& x, const std::vector<double>& y,
+                             const std::vector<int>& powers) {
   if (x.size() < powers.size()) return {};
   Eigen::MatrixXd a(x.size(), powers.size());
   for (std::size_t i = 0; i < x.size(); ++i) {

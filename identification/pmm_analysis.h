@@ -44,13 +44,14 @@ struct RunAnalysis {
 
 // The hydrodynamic force series of a run: the measured series plus M_RB a
 // when the run includes rigid-body inertia, unchanged otherwise.
-std::array<std::vector<double>, 3> HydrodynamicForces(const CaptiveShip& ship, const CaptiveRun& run);
+std::array<std::vector<double>, 3> HydrodynamicForces(const CaptiveShip& ship,
+                                                      const CaptiveRun& run);
 
 RunAnalysis AnalyseRun(const CaptiveShip& ship, const CaptiveRun& run, std::string_view source);
 
 struct ClassicalEstimate {
-  std::string name;    // e.g. "Y_v", "N_rdot" (prime)
-  std::string source;  // run name, "static drift regression" or "zero-amplitude extrapolation"
+  std::string name;      // e.g. "Y_v", "N_rdot" (prime)
+  std::string source;    // run name, "static drift regression" or "zero-amplitude extrapolation"
   double amplitude = 0;  // v'_a or r'_a of the run (0 for regressions and extrapolations)
   double value = 0;
 };

@@ -38,7 +38,8 @@ sim::ShipParameters HullShipFrom(const CaptiveShip& ship) {
 
 void VirtualCaptiveOptions::Validate() const {
   auto fail = [](std::string_view key, double value, std::string_view expected) {
-    throw ArgumentError(fmt::format("virtual captive option '{}' = {}: expected {}", key, value, expected));
+    throw ArgumentError(
+        fmt::format("virtual captive option '{}' = {}: expected {}", key, value, expected));
   };
   if (samples_per_period < 8) fail("samples_per_period", samples_per_period, "at least 8");
   if (periods < 1) fail("periods", periods, "at least 1");
@@ -50,7 +51,8 @@ void VirtualCaptiveOptions::Validate() const {
 
 void CampaignDesign::Validate() const {
   auto fail = [](std::string_view key, double value, std::string_view expected) {
-    throw ArgumentError(fmt::format("campaign design field '{}' = {}: expected {}", key, value, expected));
+    throw ArgumentError(
+        fmt::format("campaign design field '{}' = {}: expected {}", key, value, expected));
   };
   if (!(U > 0)) fail("U", U, "a positive speed in m/s");
   if (!(omega_prime > 0)) fail("omega_prime", omega_prime, "a positive nondimensional frequency");
@@ -67,16 +69,18 @@ void CampaignDesign::Validate() const {
     if (!(a > 0)) fail("yaw_amplitudes", a, "positive amplitudes r'_a");
   }
   for (const Circular& c : circular) {
-    if (!(std::abs(c.beta) < 0.5 * std::numbers::pi)) fail("circular.beta", c.beta, "|beta| < pi/2 rad");
-    if (!(std::isfinite(c.r_prime) && c.r_prime != 0)) fail("circular.r_prime", c.r_prime, "a non-zero yaw rate");
+    if (!(std::abs(c.beta) < 0.5 * std::numbers::pi))
+      fail("circular.beta", c.beta, "|beta| < pi/2 rad");
+    if (!(std::isfinite(c.r_prime) && c.r_prime != 0))
+      fail("circular.r_prime", c.r_prime, "a non-zero yaw rate");
   }
   if (!yaw_drift_angles.empty() && !(yaw_drift_amplitude > 0)) {
     fail("yaw_drift_amplitude", yaw_drift_amplitude, "a positive amplitude r'_a");
   }
 }
 
-CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& name, MotionParameters motion,
-                       const VirtualCaptiveOptions& options) {
+CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& name,
+                       MotionParameters motion, const VirtualCaptiveOptions& options) {
   options.Validate();
   const CaptiveShip ship = CaptiveShipFrom(model.ship());
   CaptiveRun run;
@@ -88,11 +92,13 @@ CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& na
     const double T = motion.Period();
     motion.t_ramp = options.ramp_periods * T;
     dt = T / options.samples_per_period;
-    samples = static_cast<std::size_t>((options.ramp_periods + options.periods) * options.samples_per_period);
+    samples = static_cast<std::size_t>((options.ramp_periods + options.periods) *
+                                       options.samples_per_period);
   } else {
     motion.t_ramp = options.steady_ramp;
     dt = 1.0 / options.steady_rate;
-    samples = static_cast<std::size_t>(std::llround((options.steady_ramp + options.steady_duration) / dt));
+    samples = static_cast<std::size_t>(
+        std::llround((options.steady_ramp + options.steady_duration) / dt));
   }
   run.motion = motion;
   run.time.resize(samples);
@@ -129,33 +135,47 @@ CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model, const Campa
   const double L = model.ship().principal.Lpp;
   const double omega = design.omega_prime * design.U / L;
   CaptiveCampaign c;
-  c.description = fmt::format("virtual captive tests of {} from the MMG model (U = {} m/s)", model.ship().name,
-                              design.U);
+  c.description = fmt::format("virtual captive tests of {} from the MMG model (U = {} m/s)",
+                              model.ship().name, design.U);
   c.ship = CaptiveShipFrom(model.ship());
   for (double beta : design.drift_angles) {
     MotionParameters m{.kind = MotionKind::kStaticDrift, .U = design.U, .beta = beta};
-    c.runs.push_back(GenerateRun(model, fmt::format("drift_{:+.1f}deg", beta * kRadToDeg), m, options));
+    c.runs.push_back(
+        GenerateRun(model, fmt::format("drift_{:+.1f}deg", beta * kRadToDeg), m, options));
   }
   for (double v_a : design.sway_amplitudes) {
-    MotionParameters m{.kind = MotionKind::kPureSway, .U = design.U, .y_a = v_a * design.U / omega, .omega = omega};
+    MotionParameters m{.kind = MotionKind::kPureSway,
+                       .U = design.U,
+                       .y_a = v_a * design.U / omega,
+                       .omega = omega};
     c.runs.push_back(GenerateRun(model, fmt::format("sway_v{:.3f}", v_a), m, options));
   }
   for (double r_a : design.yaw_amplitudes) {
-    MotionParameters m{.kind = MotionKind::kPureYaw, .U = design.U, .psi_a = r_a / design.omega_prime,
+    MotionParameters m{.kind = MotionKind::kPureYaw,
+                       .U = design.U,
+                       .psi_a = r_a / design.omega_prime,
                        .omega = omega};
     c.runs.push_back(GenerateRun(model, fmt::format("yaw_r{:.3f}", r_a), m, options));
   }
   for (double beta : design.yaw_drift_angles) {
-    MotionParameters m{.kind = MotionKind::kYawDrift, .U = design.U, .beta = beta,
-                       .psi_a = design.yaw_drift_amplitude / design.omega_prime, .omega = omega};
+    MotionParameters m{.kind = MotionKind::kYawDrift,
+                       .U = design.U,
+                       .beta = beta,
+                       .psi_a = design.yaw_drift_amplitude / design.omega_prime,
+                       .omega = omega};
     c.runs.push_back(GenerateRun(
-        model, fmt::format("yaw_drift_{:+.1f}deg_r{:.3f}", beta * kRadToDeg, design.yaw_drift_amplitude), m,
-        options));
+        model,
+        fmt::format("yaw_drift_{:+.1f}deg_r{:.3f}", beta * kRadToDeg, design.yaw_drift_amplitude),
+        m, options));
   }
   for (const CampaignDesign::Circular& arm : design.circular) {
-    MotionParameters m{.kind = MotionKind::kCircularMotion, .U = design.U, .beta = arm.beta, .r_prime = arm.r_prime};
-    c.runs.push_back(
-        GenerateRun(model, fmt::format("circular_{:+.1f}deg_r{:.3f}", arm.beta * kRadToDeg, arm.r_prime), m, options));
+    MotionParameters m{.kind = MotionKind::kCircularMotion,
+                       .U = design.U,
+                       .beta = arm.beta,
+                       .r_prime = arm.r_prime};
+    c.runs.push_back(GenerateRun(
+        model, fmt::format("circular_{:+.1f}deg_r{:.3f}", arm.beta * kRadToDeg, arm.r_prime), m,
+        options));
   }
   return c;
 }

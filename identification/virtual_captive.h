@@ -24,9 +24,9 @@ struct VirtualCaptiveOptions {
   // When true the series are balance readings, F_hyd - M_RB a (what a towing
   // tank measures); when false the hydrodynamic force alone (what CFD gives).
   bool include_rigid_body_inertia = true;
-  int samples_per_period = 200;  // harmonic runs
-  int periods = 5;               // whole periods analysed (after the ramp-up)
-  int ramp_periods = 1;          // harmonic runs: periods before t_ramp
+  int samples_per_period = 200;   // harmonic runs
+  int periods = 5;                // whole periods analysed (after the ramp-up)
+  int ramp_periods = 1;           // harmonic runs: periods before t_ramp
   double steady_duration = 20.0;  // s, static drift / circular motion after t_ramp
   double steady_rate = 10.0;      // Hz, sampling of steady runs
   double steady_ramp = 5.0;       // s, t_ramp of steady runs
@@ -35,23 +35,23 @@ struct VirtualCaptiveOptions {
 };
 
 // One run with the motion `motion` (its t_ramp is overwritten from the options).
-CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& name, MotionParameters motion,
-                       const VirtualCaptiveOptions& options);
+CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& name,
+                       MotionParameters motion, const VirtualCaptiveOptions& options);
 
 // A campaign design in prime quantities, at speed U.
 struct CampaignDesign {
-  double U = 0;                              // m/s
-  std::vector<double> drift_angles;          // rad, static drift runs
-  double omega_prime = 3.0;                  // omega Lpp / U of the harmonic runs
-  std::vector<double> sway_amplitudes;       // v'_a = y_a omega / U, pure sway runs
-  std::vector<double> yaw_amplitudes;        // r'_a = psi_a omega Lpp / U, pure yaw runs
-  std::vector<double> yaw_drift_angles;      // rad, yaw with drift runs (at yaw_drift_amplitude)
-  double yaw_drift_amplitude = 0.4;          // r'_a of the yaw with drift runs
+  double U = 0;                          // m/s
+  std::vector<double> drift_angles;      // rad, static drift runs
+  double omega_prime = 3.0;              // omega Lpp / U of the harmonic runs
+  std::vector<double> sway_amplitudes;   // v'_a = y_a omega / U, pure sway runs
+  std::vector<double> yaw_amplitudes;    // r'_a = psi_a omega Lpp / U, pure yaw runs
+  std::vector<double> yaw_drift_angles;  // rad, yaw with drift runs (at yaw_drift_amplitude)
+  double yaw_drift_amplitude = 0.4;      // r'_a of the yaw with drift runs
   struct Circular {
     double beta = 0;     // rad
     double r_prime = 0;  // r Lpp / U
   };
-  std::vector<Circular> circular;            // circular motion (rotating arm) runs
+  std::vector<Circular> circular;  // circular motion (rotating arm) runs
 
   void Validate() const;  // throws kelvin::ArgumentError naming the field
 };

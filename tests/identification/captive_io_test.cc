@@ -18,7 +18,9 @@ namespace kelvin::ident {
 namespace {
 
 // KVLCC2 L7 model of Yasukawa & Yoshimura (2015) (data/ships/kvlcc2.yaml).
-sim::ShipParameters Kvlcc2() { return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml"); }
+sim::ShipParameters Kvlcc2() {
+  return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
+}
 
 CaptiveCampaign SmallCampaign() {
   const sim::ShipParameters ship = Kvlcc2();
@@ -81,24 +83,30 @@ TEST(CaptiveIoTest, CsvRoundTripIsExact) {
 
 // Writes a campaign by hand so that single channels can be broken.
 struct H5Edit {
-  std::string drop_channel;      // "run/channel" left out
-  std::string units_channel;     // "run/channel" written with wrong units
+  std::string drop_channel;   // "run/channel" left out
+  std::string units_channel;  // "run/channel" written with wrong units
   std::string units = "kN";
 };
 void WriteEdited(const CaptiveCampaign& c, const std::filesystem::path& path, const H5Edit& edit) {
   data::H5Writer w(path);
   w.SetAttribute("/", "schema", kCaptiveSchema);
   w.SetAttribute("/ship", "name", c.ship.name);
-  for (auto [k, v] : std::vector<std::pair<std::string, double>>{{"Lpp", c.ship.Lpp}, {"B", c.ship.B}, {"d", c.ship.d},
-                                                                 {"rho", c.ship.rho}, {"mass", c.ship.mass},
-                                                                 {"x_G", c.ship.x_G}, {"I_zG", c.ship.I_zG}}) {
+  for (auto [k, v] : std::vector<std::pair<std::string, double>>{{"Lpp", c.ship.Lpp},
+                                                                 {"B", c.ship.B},
+                                                                 {"d", c.ship.d},
+                                                                 {"rho", c.ship.rho},
+                                                                 {"mass", c.ship.mass},
+                                                                 {"x_G", c.ship.x_G},
+                                                                 {"I_zG", c.ship.I_zG}}) {
     w.SetAttribute("/ship", k, v);
   }
   for (const CaptiveRun& run : c.runs) {
     const std::string g = "/runs/" + run.name;
     w.SetAttribute(g, "kind", MotionKindName(run.motion.kind));
-    for (auto [k, v] : std::vector<std::pair<std::string, double>>{{"U", run.motion.U}, {"beta", run.motion.beta},
-                                                                   {"y_a", run.motion.y_a}, {"psi_a", run.motion.psi_a},
+    for (auto [k, v] : std::vector<std::pair<std::string, double>>{{"U", run.motion.U},
+                                                                   {"beta", run.motion.beta},
+                                                                   {"y_a", run.motion.y_a},
+                                                                   {"psi_a", run.motion.psi_a},
                                                                    {"omega", run.motion.omega},
                                                                    {"t_ramp", run.motion.t_ramp}}) {
       w.SetAttribute(g, k, v);
@@ -147,12 +155,16 @@ TEST(CaptiveIoTest, InconsistentUnitsNameRunAndChannel) {
   edit.units = "kN m";
   WriteEdited(c, dir / "c.h5", edit);
   const std::string msg = ReadError(dir / "c.h5");
-  EXPECT_NE(msg.find("run '" + run + "': channel 'N' has units 'kN m'; expected 'N m'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("run '" + run + "': channel 'N' has units 'kN m'; expected 'N m'"),
+            std::string::npos)
+      << msg;
   edit.units_channel = run + "/time";
   edit.units = "ms";
   WriteEdited(c, dir / "d.h5", edit);
   const std::string msg2 = ReadError(dir / "d.h5");
-  EXPECT_NE(msg2.find("run '" + run + "': channel 'time' has units 'ms'; expected 's'"), std::string::npos) << msg2;
+  EXPECT_NE(msg2.find("run '" + run + "': channel 'time' has units 'ms'; expected 's'"),
+            std::string::npos)
+      << msg2;
 }
 
 TEST(CaptiveIoTest, LessThanOnePeriodAfterRampNamesRunAndChannels) {
@@ -165,7 +177,8 @@ TEST(CaptiveIoTest, LessThanOnePeriodAfterRampNamesRunAndChannels) {
   for (auto& f : run.force) f.resize(keep);
   WriteCampaignH5(c, dir / "c.h5");
   const std::string msg = ReadError(dir / "c.h5");
-  EXPECT_NE(msg.find("run '" + run.name + "': channels 'X', 'Y', 'N': less than one whole period"), std::string::npos)
+  EXPECT_NE(msg.find("run '" + run.name + "': channels 'X', 'Y', 'N': less than one whole period"),
+            std::string::npos)
       << msg;
   // One more sample (t = 2T - dt) completes the period: accepted.
   CaptiveCampaign ok = SmallCampaign();
@@ -180,7 +193,8 @@ TEST(CaptiveIoTest, NanInForcesNamesRunChannelAndSample) {
   c.runs[3].force[2][17] = std::numeric_limits<double>::quiet_NaN();
   WriteCampaignH5(c, dir / "c.h5");
   const std::string msg = ReadError(dir / "c.h5");
-  EXPECT_NE(msg.find("run '" + c.runs[3].name + "': channel 'N': sample 17"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("run '" + c.runs[3].name + "': channel 'N': sample 17"), std::string::npos)
+      << msg;
   EXPECT_NE(msg.find("nan"), std::string::npos) << msg;
 }
 
@@ -204,15 +218,17 @@ TEST(CaptiveIoTest, BadMotionAttributesNameRunAndAttribute) {
     ValidateCampaign(c, "c.h5");
     FAIL();
   } catch (const DataFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("run '" + c.runs[1].name + "': attribute 'omega' = 0"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("run '" + c.runs[1].name + "': attribute 'omega' = 0"),
+              std::string::npos)
         << e.what();
   }
   EXPECT_THROW(ParseMotionKind("pure_surge", "c.h5: run 'a'"), DataFileError);
   try {
     ParseMotionKind("pure_surge", "c.h5: run 'a'");
   } catch (const DataFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("unknown motion kind 'pure_surge'; valid kinds: static_drift"),
-              std::string::npos);
+    EXPECT_NE(
+        std::string(e.what()).find("unknown motion kind 'pure_surge'; valid kinds: static_drift"),
+        std::string::npos);
   }
 }
 
@@ -223,7 +239,8 @@ TEST(CaptiveIoTest, NotACampaignFile) {
     w.SetAttribute("/", "schema", "kelvin.maneuver/1");
     w.Commit();
   }
-  EXPECT_NE(ReadError(dir / "other.h5").find("attribute 'schema' = 'kelvin.maneuver/1': expected 'kelvin.captive/1'"),
+  EXPECT_NE(ReadError(dir / "other.h5")
+                .find("attribute 'schema' = 'kelvin.maneuver/1': expected 'kelvin.captive/1'"),
             std::string::npos);
   EXPECT_NE(ReadError(dir / "missing.h5").find("missing.h5: no such file"), std::string::npos);
 }
@@ -263,10 +280,12 @@ TEST(CaptiveIoTest, CsvBadInputsNameRunAndChannel) {
   const CaptiveRun run = SmallCampaign().runs[1];
   const std::string text = CsvText(run);
   const std::string prefix = "run '" + run.name + "'";
-  std::string msg = CsvError(dir / "a.csv", Replace(text, "time [s],X [N],Y [N],N [N m]", "time [s],X [N],N [N m]"));
+  std::string msg = CsvError(
+      dir / "a.csv", Replace(text, "time [s],X [N],Y [N],N [N m]", "time [s],X [N],N [N m]"));
   EXPECT_NE(msg.find(prefix + ": channel 'Y' is missing"), std::string::npos) << msg;
   msg = CsvError(dir / "b.csv", Replace(text, "X [N]", "X [kN]"));
-  EXPECT_NE(msg.find(prefix + ": channel 'X' has units 'kN'; expected 'N'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(prefix + ": channel 'X' has units 'kN'; expected 'N'"), std::string::npos)
+      << msg;
   msg = CsvError(dir / "c.csv", Replace(text, "# kind: pure_sway", "# kind: pure_swing"));
   EXPECT_NE(msg.find("unknown motion kind 'pure_swing'"), std::string::npos) << msg;
   msg = CsvError(dir / "d.csv", Replace(text, "# omega:", "# omgea:"));
@@ -282,7 +301,8 @@ TEST(CaptiveIoTest, CsvBadInputsNameRunAndChannel) {
     ValidateCampaign(c, "e.csv");
     FAIL();
   } catch (const DataFileError& e) {
-    EXPECT_NE(std::string(e.what()).find(prefix + ": channel 'Y': sample 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(prefix + ": channel 'Y': sample 3"), std::string::npos)
+        << e.what();
   }
   msg = CsvError(dir / "f.csv", text + "1.0,abc,2.0,3.0\n");
   EXPECT_NE(msg.find(prefix + ": channel 'X': 'abc' is not a number"), std::string::npos) << msg;

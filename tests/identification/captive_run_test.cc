@@ -16,7 +16,9 @@
 namespace kelvin::ident {
 namespace {
 
-sim::ShipParameters Kvlcc2() { return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml"); }
+sim::ShipParameters Kvlcc2() {
+  return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
+}
 
 MotionParameters Motion(MotionKind kind) {
   MotionParameters m;
@@ -80,13 +82,15 @@ TEST(CaptiveRunTest, CaptiveForceModelMatchesMotionEquations) {
   const sim::ShipParameters ship = Kvlcc2();
   const sim::MmgModel<double> model(ship);
   const CaptiveShip cs = CaptiveShipFrom(ship);
-  for (auto [u, v, r] : std::vector<std::array<double, 3>>{{1.1, -0.2, 0.05}, {0.9, 0.1, -0.08}, {1.2, 0.0, 0.0}}) {
+  for (auto [u, v, r] :
+       std::vector<std::array<double, 3>>{{1.1, -0.2, 0.05}, {0.9, 0.1, -0.08}, {1.2, 0.0, 0.0}}) {
     const sim::PlanarForce<double> hull = model.HullForces(u, v, r);
     const std::array<double, 3> acc = model.Accelerations(u, v, r, hull);
     const BodyKinematics k{u, v, r, acc[0], acc[1], acc[2]};
     const std::array<double, 3> f = CaptiveHydrodynamicForce(model, k);
     const std::array<double, 3> rb = RigidBodyInertia(cs, k);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], rb[c], 1e-9 * (1 + std::abs(rb[c]))) << "channel " << c;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(f[c], rb[c], 1e-9 * (1 + std::abs(rb[c]))) << "channel " << c;
   }
 }
 
@@ -95,7 +99,8 @@ TEST(CaptiveRunTest, CircularMotionRunIsSteadyAndAnalysed) {
   MotionParameters m = Motion(MotionKind::kCircularMotion);
   const CaptiveRun run = GenerateRun(sim::MmgModel<double>(ship), "arm", m, {});
   const std::array<double, 3> f0 = {run.force[0].back(), run.force[1].back(), run.force[2].back()};
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(run.force[c][run.force[c].size() / 2], f0[c], 1e-9 * std::abs(f0[c]));
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(run.force[c][run.force[c].size() / 2], f0[c], 1e-9 * std::abs(f0[c]));
   EXPECT_NO_THROW(SelectWindow(run, "arm"));
 }
 
@@ -106,7 +111,8 @@ TEST(CaptiveRunTest, BadGeneratorOptionsNameTheOption) {
     o.Validate();
     FAIL();
   } catch (const ArgumentError& e) {
-    EXPECT_NE(std::string(e.what()).find("'samples_per_period' = 4: expected at least 8"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("'samples_per_period' = 4: expected at least 8"),
+              std::string::npos);
   }
   CampaignDesign d = StandardDesign(1.0, true);
   d.sway_amplitudes = {0.1, -0.2};
@@ -114,7 +120,8 @@ TEST(CaptiveRunTest, BadGeneratorOptionsNameTheOption) {
     d.Validate();
     FAIL();
   } catch (const ArgumentError& e) {
-    EXPECT_NE(std::string(e.what()).find("'sway_amplitudes' = -0.2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'sway_amplitudes' = -0.2"), std::string::npos)
+        << e.what();
   }
   d = StandardDesign(0.0, true);
   try {
@@ -133,14 +140,33 @@ TEST(CaptiveRunTest, BadShipDataNamesTheAttribute) {
     ValidateCampaign(c, "c.h5");
     FAIL();
   } catch (const DataFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("c.h5: ship attribute 'I_zG' = -1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("c.h5: ship attribute 'I_zG' = -1"), std::string::npos)
+        << e.what();
   }
   c.ship = CaptiveShipFrom(Kvlcc2());
   try {
     ValidateCampaign(c, "c.h5");
     FAIL();
   } catch (const DataFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("c.h5: the campaign holds no runs"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("c.h5: the campaign holds no runs"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(CaptiveRunTest, DuplicateRunNamesAreRejected) {
+  const sim::ShipParameters ship = Kvlcc2();
+  CaptiveCampaign c;
+  c.ship = CaptiveShipFrom(ship);
+  const CaptiveRun run =
+      GenerateRun(sim::MmgModel<double>(ship), "sway", Motion(MotionKind::kPureSway), {});
+  c.runs = {run, run};
+  try {
+    ValidateCampaign(c, "runs.csv");
+    FAIL();
+  } catch (const DataFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("runs.csv: run 'sway' appears twice (runs 0 and 1)"),
+              std::string::npos)
+        << e.what();
   }
 }
 

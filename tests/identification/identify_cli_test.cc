@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 
+#include "bridge/derivative_set.h"
 #include "data/schema/h5_file.h"
 #include "identification/captive_io.h"
 #include "identification/virtual_captive.h"
@@ -22,14 +23,15 @@ std::filesystem::path ShipFile() { return testing::SourceDir() / "data/ships/kvl
 
 CaptiveCampaign Campaign() {
   const sim::ShipParameters ship = sim::LoadShip(ShipFile());
-  return GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, true), {});
+  return GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, true),
+                          {});
 }
 
 TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
   testing::ScopedTempDir dir;
   WriteCampaignH5(Campaign(), dir / "campaign.h5");
-  const auto r = testing::RunCommand(Kelvin() + " identify " + (dir / "campaign.h5").string() + " -o " +
-                                     (dir / "kvlcc2_derivatives.yaml").string());
+  const auto r = testing::RunCommand(Kelvin() + " identify " + (dir / "campaign.h5").string() +
+                                     " -o " + (dir / "kvlcc2_derivatives.yaml").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("Y_v"), std::string::npos);
   // The hull: section replaces a ship file's hull: section as is.
@@ -45,8 +47,15 @@ TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
   for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
     EXPECT_NEAR(identified.hull[i], truth.hull[i], 0.005 * std::abs(truth.hull[i]))
         << sim::HullCoefficients<double>::kNames[i];
-    EXPECT_TRUE(out["std_error"][std::string(sim::HullCoefficients<double>::kNames[i])].IsDefined());
+    EXPECT_TRUE(
+        out["standard_errors"][std::string(sim::HullCoefficients<double>::kNames[i])].IsDefined());
   }
+  // The bridge streams it as a derivative set (unchecked against CFD so far).
+  const bridge::DerivativeSet set = bridge::LoadDerivativeSet(dir / "kvlcc2_derivatives.yaml");
+  for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
+    EXPECT_EQ(set.hull[i], identified.hull[i]) << sim::HullCoefficients<double>::kNames[i];
+  }
+  EXPECT_FALSE(set.check.has_value());
   // HDF5 beside it: the full covariance and per-run measured/fitted forces.
   const data::H5Reader h5(dir / "kvlcc2_derivatives.h5");
   const data::Series cov = h5.Read("/covariance");
@@ -55,12 +64,14 @@ TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
   EXPECT_TRUE(h5.Has("/runs/sway_v0.100/measured_Y"));
   // The plot script draws measured against fitted forces, one PNG per run.
   if (!testing::HaveProgram("/usr/bin/python3")) GTEST_SKIP() << "no /usr/bin/python3";
-  const auto plot = testing::RunCommand("/usr/bin/python3 " +
-                                        (testing::SourceDir() / "tools/plot_identification.py").string() + " " +
-                                        (dir / "kvlcc2_derivatives.h5").string() + " -o " + (dir / "plots").string());
+  const auto plot = testing::RunCommand(
+      "/usr/bin/python3 " + (testing::SourceDir() / "tools/plot_identification.py").string() + " " +
+      (dir / "kvlcc2_derivatives.h5").string() + " -o " + (dir / "plots").string());
   ASSERT_EQ(plot.exit_code, 0) << plot.output;
-  for (const char* run : {"drift_+20.0deg", "sway_v0.200", "yaw_r0.600", "yaw_drift_+12.0deg_r0.400"}) {
-    EXPECT_GT(std::filesystem::file_size(dir / "plots" / (std::string(run) + ".png")), 10000u) << run;
+  for (const char* run :
+       {"drift_+20.0deg", "sway_v0.200", "yaw_r0.600", "yaw_drift_+12.0deg_r0.400"}) {
+    EXPECT_GT(std::filesystem::file_size(dir / "plots" / (std::string(run) + ".png")), 10000u)
+        << run;
   }
 }
 
@@ -71,13 +82,14 @@ TEST(IdentifyCliTest, CsvRunsWithShipFile) {
     WriteRunCsv(run, dir / (run.name + ".csv"));
     files.append(" ").append((dir / (run.name + ".csv")).string());
   }
-  const auto r = testing::RunCommand(Kelvin() + " identify" + files + " --ship " + ShipFile().string() + " -o " +
-                                     (dir / "d.yaml").string());
+  const auto r = testing::RunCommand(Kelvin() + " identify" + files + " --ship " +
+                                     ShipFile().string() + " -o " + (dir / "d.yaml").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const YAML::Node out = YAML::LoadFile((dir / "d.yaml").string());
   EXPECT_NEAR(out["hull"]["N_r"].as<double>(), -0.049, 0.005 * 0.049);
   // Without the ship file the CSV runs lack the ship data: argument error.
-  const auto bad = testing::RunCommand(Kelvin() + " identify" + files + " -o " + (dir / "e.yaml").string());
+  const auto bad =
+      testing::RunCommand(Kelvin() + " identify" + files + " -o " + (dir / "e.yaml").string());
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("--ship is required with .csv runs"), std::string::npos) << bad.output;
 }
@@ -85,22 +97,36 @@ TEST(IdentifyCliTest, CsvRunsWithShipFile) {
 TEST(IdentifyCliTest, BadArgumentsExitTwo) {
   testing::ScopedTempDir dir;
   WriteCampaignH5(Campaign(), dir / "c.h5");
-  const std::string base = Kelvin() + " identify " + (dir / "c.h5").string() + " -o " + (dir / "d.yaml").string();
+  const std::string base =
+      Kelvin() + " identify " + (dir / "c.h5").string() + " -o " + (dir / "d.yaml").string();
   auto r = testing::RunCommand(base + " --loss square");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("--loss 'square': expected 'none', 'huber' or 'cauchy'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--loss 'square': expected 'none', 'huber' or 'cauchy'"),
+            std::string::npos)
+      << r.output;
   r = testing::RunCommand(base + " --prior Y_vv=1:0.1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("unknown coefficient 'Y_vv'"), std::string::npos) << r.output;
   r = testing::RunCommand(base + " --prior Y_vvr=0.3");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("--prior 'Y_vvr=0.3': expected NAME=MEAN:SIGMA"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--prior 'Y_vvr=0.3': expected NAME=MEAN:SIGMA"), std::string::npos)
+      << r.output;
+  r = testing::RunCommand(base + " --bound Y_v=-0.2:-0.4");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("'bounds.Y_v': [-0.2, -0.4]: expected lower < upper"), std::string::npos)
+      << r.output;
+  r = testing::RunCommand(base + " --bound Y_v=-0.2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--bound 'Y_v=-0.2': expected NAME=LOWER:UPPER"), std::string::npos)
+      << r.output;
   r = testing::RunCommand(base + " --fix m_x_prime=abc");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--fix m_x_prime: 'abc' is not a number"), std::string::npos) << r.output;
-  r = testing::RunCommand(Kelvin() + " identify " + (dir / "c.txt").string() + " -o " + (dir / "d.yaml").string());
+  r = testing::RunCommand(Kelvin() + " identify " + (dir / "c.txt").string() + " -o " +
+                          (dir / "d.yaml").string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("expected a campaign .h5 file or .csv runs"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("expected a campaign .h5 file or .csv runs"), std::string::npos)
+      << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "d.yaml"));
 }
 
@@ -113,9 +139,12 @@ TEST(IdentifyCliTest, BadFilesExitOneAndWriteNothing) {
   CaptiveCampaign c = Campaign();
   c.runs[7].force[1][300] = std::numeric_limits<double>::quiet_NaN();
   WriteCampaignH5(c, dir / "nan.h5");
-  r = testing::RunCommand(Kelvin() + " identify " + (dir / "nan.h5").string() + " -o " + (dir / "d.yaml").string());
+  r = testing::RunCommand(Kelvin() + " identify " + (dir / "nan.h5").string() + " -o " +
+                          (dir / "d.yaml").string());
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.output.find("run '" + c.runs[7].name + "': channel 'Y': sample 300"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("run '" + c.runs[7].name + "': channel 'Y': sample 300"),
+            std::string::npos)
+      << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "d.yaml"));
   EXPECT_FALSE(std::filesystem::exists(dir / "d.h5"));
 }

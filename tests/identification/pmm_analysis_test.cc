@@ -15,7 +15,9 @@
 namespace kelvin::ident {
 namespace {
 
-sim::ShipParameters Kvlcc2() { return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml"); }
+sim::ShipParameters Kvlcc2() {
+  return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
+}
 
 CaptiveShip UnitShip() {
   CaptiveShip s;
@@ -48,7 +50,8 @@ TEST(PmmAnalysisTest, FirstHarmonicOverWholePeriodsAfterRamp) {
     run.time.push_back(t);
     const double garbage = t < T ? 50.0 * std::exp(-t) : 0.0;
     run.force[0].push_back(3.0 + 0.5 * std::cos(w) + 0.25 * std::sin(3 * w) + garbage);
-    run.force[1].push_back(-2.0 * std::cos(w) + 1.5 * std::sin(w) + 0.7 * std::cos(3 * w) + garbage);
+    run.force[1].push_back(-2.0 * std::cos(w) + 1.5 * std::sin(w) + 0.7 * std::cos(3 * w) +
+                           garbage);
     run.force[2].push_back(0.3 * std::sin(w) - 0.1 + garbage);
   }
   const RunAnalysis a = AnalyseRun(ship, run, "synthetic");
@@ -81,7 +84,8 @@ TEST(PmmAnalysisTest, RigidBodyInertiaIsRemoved) {
   ASSERT_EQ(a.runs.size(), b.runs.size());
   for (std::size_t r = 0; r < a.runs.size(); ++r) {
     for (int c = 0; c < 3; ++c) {
-      const double scale = 1.0 + std::abs(b.runs[r].force[c].Amplitude()) + std::abs(b.runs[r].force[c].mean);
+      const double scale =
+          1.0 + std::abs(b.runs[r].force[c].Amplitude()) + std::abs(b.runs[r].force[c].mean);
       EXPECT_NEAR(a.runs[r].force[c].mean, b.runs[r].force[c].mean, 1e-9 * scale);
       EXPECT_NEAR(a.runs[r].force[c].in_phase, b.runs[r].force[c].in_phase, 1e-9 * scale);
       EXPECT_NEAR(a.runs[r].force[c].quadrature, b.runs[r].force[c].quadrature, 1e-9 * scale);
@@ -89,7 +93,8 @@ TEST(PmmAnalysisTest, RigidBodyInertiaIsRemoved) {
   }
 }
 
-const ClassicalEstimate* Find(const PmmAnalysis& a, const std::string& name, const std::string& source) {
+const ClassicalEstimate* Find(const PmmAnalysis& a, const std::string& name,
+                              const std::string& source) {
   for (const ClassicalEstimate& e : a.estimates) {
     if (e.name == name && e.source == source) return &e;
   }
@@ -102,7 +107,8 @@ const ClassicalEstimate* Find(const PmmAnalysis& a, const std::string& name, con
 TEST(PmmAnalysisTest, StaticDriftRegressionIsExact) {
   const sim::ShipParameters ship = Kvlcc2();
   const PmmAnalysis a = AnalyseCampaign(
-      GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, false), {}), "kvlcc2");
+      GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, false), {}),
+      "kvlcc2");
   const std::string reg = "static drift regression";
   const sim::HullCoefficients<double>& h = ship.hull;
   for (auto [name, truth] : std::vector<std::pair<std::string, double>>{{"R0_prime", h.R0},
@@ -126,9 +132,11 @@ TEST(PmmAnalysisTest, StaticDriftRegressionIsExact) {
 TEST(PmmAnalysisTest, ClassicalDerivativesMatchTheMmgModel) {
   const sim::ShipParameters ship = Kvlcc2();
   const PmmAnalysis a = AnalyseCampaign(
-      GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, false), {}), "kvlcc2");
+      GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, false), {}),
+      "kvlcc2");
   const std::string zero = "zero-amplitude extrapolation";
-  for (const std::string name : {"Y_v", "N_v", "Y_vdot", "N_vdot", "Y_r", "N_r", "Y_rdot", "N_rdot"}) {
+  for (const std::string name :
+       {"Y_v", "N_v", "Y_vdot", "N_vdot", "Y_r", "N_r", "Y_rdot", "N_rdot"}) {
     const ClassicalEstimate* e = Find(a, name, zero);
     ASSERT_NE(e, nullptr) << name;
     double truth = 0;

@@ -16,16 +16,16 @@ namespace kelvin::ident {
 namespace {
 
 sim::TurningMetrics Turn(const sim::ShipParameters& ship) {
-  const sim::ManeuverResult r =
-      sim::RunManeuver(sim::MmgModel<double>(ship), sim::ManeuverSpec::Parse("turning:35:stbd"), sim::RunOptions{});
+  const sim::ManeuverResult r = sim::RunManeuver(
+      sim::MmgModel<double>(ship), sim::ManeuverSpec::Parse("turning:35:stbd"), sim::RunOptions{});
   EXPECT_TRUE(r.turning.has_value());
   return r.turning.value_or(sim::TurningMetrics{});
 }
 
 void CompareTurn(double noise, std::uint64_t seed) {
   const sim::ShipParameters truth = sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
-  CaptiveCampaign c =
-      GenerateCampaign(sim::MmgModel<double>(truth), StandardDesign(truth.approach_speed, true), {});
+  CaptiveCampaign c = GenerateCampaign(sim::MmgModel<double>(truth),
+                                       StandardDesign(truth.approach_speed, true), {});
   if (noise > 0) AddForceNoise(c, noise, seed);
   const JointFitResult fit = FitCampaign(c, {}, "virtual");
   ASSERT_TRUE(fit.converged);
@@ -33,10 +33,12 @@ void CompareTurn(double noise, std::uint64_t seed) {
   identified.hull = fit.coefficients;
   const sim::TurningMetrics a = Turn(truth);
   const sim::TurningMetrics b = Turn(identified);
-  const double advance = b.advance / a.advance - 1, tactical = b.tactical_diameter / a.tactical_diameter - 1;
-  std::printf("noise %.0f%%: advance %.4f / %.4f m (%+.3f%%), tactical diameter %.4f / %.4f m (%+.3f%%)\n",
-              100 * noise, b.advance, a.advance, 100 * advance, b.tactical_diameter, a.tactical_diameter,
-              100 * tactical);
+  const double advance = b.advance / a.advance - 1,
+               tactical = b.tactical_diameter / a.tactical_diameter - 1;
+  std::printf(
+      "noise %.0f%%: advance %.4f / %.4f m (%+.3f%%), tactical diameter %.4f / %.4f m (%+.3f%%)\n",
+      100 * noise, b.advance, a.advance, 100 * advance, b.tactical_diameter, a.tactical_diameter,
+      100 * tactical);
   EXPECT_LT(std::abs(advance), 0.01);
   EXPECT_LT(std::abs(tactical), 0.01);
 }

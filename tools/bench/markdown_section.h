@@ -11,7 +11,8 @@
 
 namespace kelvin::bench {
 
-inline void ReplaceMarkdownSection(const std::string& file, const std::string& name, const std::string& section) {
+inline void ReplaceMarkdownSection(const std::string& file, const std::string& name,
+                                   const std::string& section) {
   const std::string begin = "<!-- " + name + ":begin -->", end = "<!-- " + name + ":end -->";
   std::string text;
   {
@@ -25,7 +26,8 @@ inline void ReplaceMarkdownSection(const std::string& file, const std::string& n
   if (b != std::string::npos && e != std::string::npos && e > b) {
     text.replace(b, e + end.size() - b, block);
   } else {
-    if (text.empty()) text = "# Benchmarks\n\nFigures measured on the project's 2-core Debian 12 machine.\n";
+    if (text.empty())
+      text = "# Benchmarks\n\nFigures measured on the project's 2-core Debian 12 machine.\n";
     text += "\n" + block + "\n";
   }
   data::WriteFileAtomically(file, text);

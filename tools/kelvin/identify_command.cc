@@ -32,11 +32,13 @@ struct IdentifyArgs {
   double max_relative_std_error = 0.25;
   std::vector<std::string> priors;
   std::vector<std::string> fixed;
+  std::vector<std::string> bounds;
   bool keep_unidentifiable = false;
 };
 
 // "NAME=VALUE" -> (NAME, VALUE); throws ArgumentError naming the option.
-std::pair<std::string, std::string> SplitAssignment(const std::string& option, const std::string& text,
+std::pair<std::string, std::string> SplitAssignment(const std::string& option,
+                                                    const std::string& text,
                                                     const std::string& form) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0) {
@@ -53,7 +55,8 @@ double ParseDouble(const std::string& option, const std::string& text) {
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used == 0 || used != text.size()) throw ArgumentError(fmt::format("{}: '{}' is not a number", option, text));
+  if (used == 0 || used != text.size())
+    throw ArgumentError(fmt::format("{}: '{}' is not a number", option, text));
   return v;
 }
 
@@ -72,10 +75,12 @@ void RunIdentify(const IdentifyArgs& a) {
   options.max_relative_std_error = a.max_relative_std_error;
   options.fix_unidentifiable = !a.keep_unidentifiable;
   for (const std::string& p : a.priors) {
-    const auto [name, rest] = SplitAssignment("--prior", p, "NAME=MEAN:SIGMA (e.g. Y_vvr=0.38:0.05)");
+    const auto [name, rest] =
+        SplitAssignment("--prior", p, "NAME=MEAN:SIGMA (e.g. Y_vvr=0.38:0.05)");
     const auto colon = rest.find(':');
     if (colon == std::string::npos) {
-      throw ArgumentError(fmt::format("--prior '{}': expected NAME=MEAN:SIGMA (e.g. Y_vvr=0.38:0.05)", p));
+      throw ArgumentError(
+          fmt::format("--prior '{}': expected NAME=MEAN:SIGMA (e.g. Y_vvr=0.38:0.05)", p));
     }
     options.priors[name] = {ParseDouble("--prior " + name, rest.substr(0, colon)),
                             ParseDouble("--prior " + name, rest.substr(colon + 1))};
@@ -83,6 +88,17 @@ void RunIdentify(const IdentifyArgs& a) {
   for (const std::string& f : a.fixed) {
     const auto [name, value] = SplitAssignment("--fix", f, "NAME=VALUE (e.g. m_x_prime=0.022)");
     options.fixed[name] = ParseDouble("--fix " + name, value);
+  }
+  for (const std::string& b : a.bounds) {
+    const auto [name, rest] =
+        SplitAssignment("--bound", b, "NAME=LOWER:UPPER (e.g. m_x_prime=0:0.1)");
+    const auto colon = rest.find(':');
+    if (colon == std::string::npos) {
+      throw ArgumentError(
+          fmt::format("--bound '{}': expected NAME=LOWER:UPPER (e.g. m_x_prime=0:0.1)", b));
+    }
+    options.bounds[name] = {ParseDouble("--bound " + name, rest.substr(0, colon)),
+                            ParseDouble("--bound " + name, rest.substr(colon + 1))};
   }
   // Option errors are argument errors: check before reading any data.
   options.Validate();
@@ -100,13 +116,15 @@ void RunIdentify(const IdentifyArgs& a) {
       throw ArgumentError(fmt::format("input '{}': expected a campaign .h5 file or .csv runs", in));
     }
   }
-  if (any_csv && any_h5) throw ArgumentError("inputs: give either one campaign .h5 file or .csv runs, not both");
+  if (any_csv && any_h5)
+    throw ArgumentError("inputs: give either one campaign .h5 file or .csv runs, not both");
   if (any_h5) {
     if (a.inputs.size() != 1) throw ArgumentError("inputs: give one campaign .h5 file");
     source = a.inputs.front();
     campaign = ident::ReadCampaignH5(source);
   } else {
-    if (a.ship_file.empty()) throw ArgumentError("--ship is required with .csv runs (the ship data of the campaign)");
+    if (a.ship_file.empty())
+      throw ArgumentError("--ship is required with .csv runs (the ship data of the campaign)");
     campaign.ship = ident::CaptiveShipFrom(sim::LoadShip(a.ship_file));
     campaign.description = "CSV runs";
     for (const std::string& in : a.inputs) campaign.runs.push_back(ident::ReadRunCsv(in));
@@ -118,8 +136,10 @@ void RunIdentify(const IdentifyArgs& a) {
   const ident::JointFitResult fit = ident::FitCampaign(campaign, options, source);
   const ident::IdentificationReport report{source, &campaign, &fit, &pmm};
   const fs::path yaml_path(a.output);
-  const fs::path h5_path = a.h5_output.empty() ? fs::path(yaml_path).replace_extension(".h5") : fs::path(a.h5_output);
-  if (h5_path == yaml_path) throw ArgumentError(fmt::format("--h5 '{}' is the YAML output", h5_path.string()));
+  const fs::path h5_path =
+      a.h5_output.empty() ? fs::path(yaml_path).replace_extension(".h5") : fs::path(a.h5_output);
+  if (h5_path == yaml_path)
+    throw ArgumentError(fmt::format("--h5 '{}' is the YAML output", h5_path.string()));
   ident::WriteDerivativeH5(report, h5_path);
   ident::WriteDerivativeYaml(report, yaml_path);
 
@@ -127,8 +147,8 @@ void RunIdentify(const IdentifyArgs& a) {
              fit.converged ? "converged" : "NOT converged");
   fmt::print("{:<11} {:>12} {:>11}  {}\n", "coefficient", "value", "std error", "status");
   for (int i = 0; i < ident::kCoefficientCount; ++i) {
-    fmt::print("{:<11} {:>12.6g} {:>11.3g}  {}\n", sim::HullCoefficients<double>::kNames[i], fit.coefficients[i],
-               fit.std_error[i], ident::CoefficientStatusName(fit.status[i]));
+    fmt::print("{:<11} {:>12.6g} {:>11.3g}  {}\n", sim::HullCoefficients<double>::kNames[i],
+               fit.coefficients[i], fit.std_error[i], ident::CoefficientStatusName(fit.status[i]));
   }
   for (const std::string& w : fit.warnings) fmt::print("warning: {}\n", w);
   fmt::print("  written: {}\n  written: {}\n", yaml_path.string(), h5_path.string());
@@ -139,22 +159,32 @@ void RunIdentify(const IdentifyArgs& a) {
 Command AddIdentifyCommand(CLI::App& app) {
   auto args = std::make_shared<IdentifyArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "identify", "Fit MMG hull derivatives and added masses to captive runs (PMM analysis + joint Ceres fit)");
-  cmd->add_option("inputs", args->inputs, "Campaign HDF5 file, or CSV runs (data/schema/captive_schema.md)")
+      "identify",
+      "Fit MMG hull derivatives and added masses to captive runs (PMM analysis + joint Ceres fit)");
+  cmd->add_option("inputs", args->inputs,
+                  "Campaign HDF5 file, or CSV runs (data/schema/captive_schema.md)")
       ->required();
-  cmd->add_option("-o,--output", args->output, "Derivative set (YAML, with standard errors)")->required();
-  cmd->add_option("--h5", args->h5_output, "HDF5 output with the covariance and fitted forces (default: -o with .h5)");
+  cmd->add_option("-o,--output", args->output, "Derivative set (YAML, with standard errors)")
+      ->required();
+  cmd->add_option("--h5", args->h5_output,
+                  "HDF5 output with the covariance and fitted forces (default: -o with .h5)");
   cmd->add_option("--ship", args->ship_file, "Ship file for CSV runs (data/ships/<ship>.yaml)");
-  cmd->add_option("--loss", args->loss, "Robust loss: none, huber or cauchy")->capture_default_str();
-  cmd->add_option("--loss-scale", args->loss_scale, "Robust loss scale in noise standard deviations")
+  cmd->add_option("--loss", args->loss, "Robust loss: none, huber or cauchy")
       ->capture_default_str();
-  cmd->add_option("--min-noise", args->min_noise, "Noise floor per run and channel, fraction of the channel RMS")
+  cmd->add_option("--loss-scale", args->loss_scale,
+                  "Robust loss scale in noise standard deviations")
+      ->capture_default_str();
+  cmd->add_option("--min-noise", args->min_noise,
+                  "Noise floor per run and channel, fraction of the channel RMS")
       ->capture_default_str();
   cmd->add_option("--max-rel-std-error", args->max_relative_std_error,
                   "Flag a coefficient whose standard error exceeds this fraction of its value")
       ->capture_default_str();
   cmd->add_option("--prior", args->priors, "Gaussian prior NAME=MEAN:SIGMA (repeatable)");
   cmd->add_option("--fix", args->fixed, "Hold a coefficient NAME=VALUE (repeatable)");
+  cmd->add_option(
+      "--bound", args->bounds,
+      "Bounds NAME=LOWER:UPPER (repeatable; 'inf' allowed; added masses default to >= 0)");
   cmd->add_flag("--keep-unidentifiable", args->keep_unidentifiable,
                 "Report flagged coefficients at their fitted values instead of dropping them");
   return {cmd, [args] { RunIdentify(*args); }};
