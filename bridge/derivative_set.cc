@@ -10,13 +10,14 @@ namespace kelvin::bridge {
 DerivativeSet LoadDerivativeSet(const std::filesystem::path& path) {
   const data::ConfigNode root = data::ConfigNode::LoadFile(path);
   if (!root.IsMap()) root.Fail("a derivative set (a map with a 'hull' section)");
-  // The sections `kelvin identify` writes, and the check.
-  root.ExpectKeys(
-      {"identification", "hull", "std_error", "status", "warnings", "run_residuals", "pmm_cross_check", "check"});
+  // The sections `kelvin identify` writes (identification/derivative_set_io.h),
+  // and the check.
+  root.ExpectKeys({"derivative_set", "hull", "standard_errors", "fit", "check"});
   DerivativeSet set;
   set.file = path.string();
-  if (const auto meta = root.Find("identification"); meta && meta->IsMap()) {
-    set.name = meta->Get<std::string>("source", "");
+  if (const auto meta = root.Find("derivative_set")) {
+    meta->ExpectKeys({"name", "ship", "source"});
+    set.name = meta->Get<std::string>("name", "");
   }
   const data::ConfigNode hull = root["hull"];
   std::vector<std::string> names;

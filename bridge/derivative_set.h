@@ -3,9 +3,10 @@
 // (identification/derivative_set_io.h); the check against free-running CFD (a
 // later stage) adds its `check` section:
 //
-//   identification: {source: ..., ship: ..., ...}   # not read by the bridge
-//   hull: {R0_prime: ..., ..., J_z_prime: ...}       # all 20, as in ship files
-//   std_error, status, warnings, run_residuals, pmm_cross_check  # not read here
+//   derivative_set: {name: ..., ship: ..., source: ...}
+//   hull: {R0_prime: ..., ..., J_z_prime: ...}   # all 20, as in ship files
+//   standard_errors: {...}                       # not read by the bridge
+//   fit: {...}                                   # not read by the bridge
 //   check: {passed: true|false, reference: ..., date: ..., summary: ...}
 //
 // The hull section of a published ship file is a reference set: it was not
@@ -29,7 +30,7 @@ struct DerivativeCheck {
 
 struct DerivativeSet {
   std::string file;
-  std::string name;  // identification.source, if given
+  std::string name;  // derivative_set.name, if given
   sim::HullCoefficients<double> hull;
   std::optional<DerivativeCheck> check;
 };

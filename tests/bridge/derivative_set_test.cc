@@ -26,12 +26,12 @@ std::filesystem::path WriteSet(const testing::ScopedTempDir& dir, const std::str
   const auto path = dir / name;
   std::ofstream f(path);
   // The layout of `kelvin identify` (identification/derivative_set_io.cc).
-  f << "identification:\n  source: campaign.h5\n  ship: KVLCC2\n  runs: 7\n  converged: true\nhull:\n";
+  f << "derivative_set:\n  name: test set\n  ship: KVLCC2\n  source: campaign.h5\nhull:\n";
   for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
     const std::string key(sim::HullCoefficients<double>::kNames[static_cast<std::size_t>(i)]);
     f << "  " << key << ": " << (key == "N_r" ? n_r : fmt::format("{}", ship.hull[i])) << "\n";
   }
-  f << "std_error:\n  N_r: 0.0004\nstatus:\n  N_r: identified\nwarnings:\n  []\n";
+  f << "standard_errors:\n  N_r: 0.0004\nfit:\n  runs: 7\n  converged: true\n  warnings: []\n";
   f << extra << check;
   return path;
 }
@@ -42,7 +42,7 @@ TEST(DerivativeSet, LoadsTheHullAndThePassingCheck) {
                              "check:\n  passed: true\n  reference: free-running CFD zig-zag 20/20\n  date: 2026-11-20\n");
   const DerivativeSet set = LoadDerivativeSet(path);
   const sim::ShipParameters ship = Kvlcc2();
-  EXPECT_EQ(set.name, "campaign.h5");
+  EXPECT_EQ(set.name, "test set");
   EXPECT_EQ(set.hull.N_r, -0.0512);
   EXPECT_EQ(set.hull.Y_v, ship.hull.Y_v);
   EXPECT_EQ(set.hull.J_z, ship.hull.J_z);
@@ -77,7 +77,7 @@ TEST(DerivativeSet, ReadsTheFileKelvinIdentifyWrites) {
   ident::WriteDerivativeYaml(report, path);
 
   const DerivativeSet set = LoadDerivativeSet(path);
-  EXPECT_EQ(set.name, "virtual_campaign.h5");
+  EXPECT_EQ(set.name, "KVLCC2 hull derivatives identified by kelvin identify");
   for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
     EXPECT_EQ(set.hull[i], fit.coefficients[i]) << sim::HullCoefficients<double>::kNames[static_cast<std::size_t>(i)];
   }
