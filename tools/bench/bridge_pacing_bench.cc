@@ -151,7 +151,7 @@ std::string Section(const Stats& b, const Stats& f, bool fifo, const Stats& n, d
            "drift is N times it). Acceptance of the bridge with normal scheduling (mean period error < 0.1 ms, p99 "
            "jitter < 2 ms, no drift): {}. It woke more than a period late {} times and re-anchored its schedule {} "
            "times. Load average (1 min) {:.2f} at the start and {:.2f} at the end of the run on this shared "
-           "2-core machine: the jitter with normal scheduling is CPU contention, which SCHED_FIFO removes.\n",
+           "2-core machine: the jitter with normal scheduling is CPU contention, which SCHED_FIFO largely removes.\n",
            std::abs(n.drift_ms) / std::max(std::abs(b.drift_ms), 1e-9),
            (std::abs(b.mean_period_error_ms) < 0.1 && b.p99_jitter_ms < 2.0 && std::abs(b.drift_ms) < 2.0) ? "met"
                                                                                                            : "NOT met",
