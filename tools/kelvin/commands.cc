@@ -9,6 +9,7 @@ std::vector<Command> AddCommands(CLI::App& app) {
   commands.push_back(AddSimulateCommand(app));
   commands.push_back(AddBridgeCommand(app));
   commands.push_back(AddIdentifyCommand(app));
+  commands.push_back(AddListenCommand(app));
   return commands;
 }
 
