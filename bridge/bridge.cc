@@ -3,7 +3,11 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <limits>
 
@@ -54,6 +58,8 @@ void BridgeOptions::Validate() const {
   Require(std::isfinite(nmea_epoch), "NMEA epoch", nmea_epoch, "a finite time in s since the UNIX epoch");
   Require(std::isfinite(max_lag) && max_lag > 0, "max lag", max_lag, "a positive time in s");
   Require(std::isfinite(log_interval) && log_interval > 0, "log interval", log_interval, "a positive time in s");
+  Require(realtime_priority >= 0 && realtime_priority <= 99, "--realtime-priority", realtime_priority,
+          "a SCHED_FIFO priority between 1 and 99 (0 = normal scheduling)");
   Require(std::isfinite(helm.stale_timeout) && helm.stale_timeout > 0, "--stale-timeout", helm.stale_timeout,
           "a positive time in s");
   helm.Validate();
@@ -221,8 +227,8 @@ void Bridge::SendNmea() {
   nmea_->Send(fix);
 }
 
-void Bridge::LogHelmProblems(std::int64_t now_ns) {
-  if (static_cast<double>(now_ns - last_log_ns_) < options_.log_interval * 1e9) return;
+void Bridge::LogHelmProblems(std::int64_t now_ns, bool force) {
+  if (!force && static_cast<double>(now_ns - last_log_ns_) < options_.log_interval * 1e9) return;
   const HelmCounters& c = helm_.counters();
   if (c.rejected() != logged_counters_.rejected() || c.clamped != logged_counters_.clamped) {
     spdlog::warn(
@@ -239,6 +245,23 @@ void Bridge::LogHelmProblems(std::int64_t now_ns) {
 }
 
 BridgeSummary Bridge::Run() {
+  KELVIN_CHECK(!ran_, "Bridge::Run() runs once per Bridge");
+  ran_ = true;
+  // Real-time scheduling for the loop, undone on return.
+  int old_policy = 0;
+  sched_param old_param{};
+  pthread_getschedparam(pthread_self(), &old_policy, &old_param);
+  if (options_.realtime_priority > 0) {
+    sched_param p{};
+    p.sched_priority = options_.realtime_priority;
+    const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p);
+    if (err == 0) {
+      summary_.realtime = true;
+    } else {
+      spdlog::warn("--realtime-priority {}: cannot switch to SCHED_FIFO ({}); running with normal scheduling",
+                   options_.realtime_priority, std::strerror(err));
+    }
+  }
   nmea_epoch_ = options_.nmea_epoch >= 0 ? options_.nmea_epoch : static_cast<double>(RealtimeMicroseconds()) * 1e-6;
   const double wall_rate = options_.rate * options_.speedup;
   nmea_every_ = std::max(1L, std::lround(wall_rate / options_.nmea_rate));
@@ -361,7 +384,7 @@ BridgeSummary Bridge::Run() {
       PublishEvent(kelvin::maneuver_event_t::STOP, 1, kNaN, sim_->time(), sim_->state()[sim::kPsi]);
     }
     if (nmea_ && seq % nmea_every_ == 0) SendNmea();
-    LogHelmProblems(MonotonicNanoseconds());
+    LogHelmProblems(MonotonicNanoseconds(), false);
 
     if (!finite) {
       summary_.status = BridgeStatus::kDiverged;
@@ -369,6 +392,15 @@ BridgeSummary Bridge::Run() {
     }
     if (options_.duration > 0 ? sim_->time() >= options_.duration - 1e-9 : (controller_ && !script_active_)) break;
   }
+  if (script_active_ && summary_.status != BridgeStatus::kDiverged) {
+    // The run ends (duration, interrupt) before the maneuver does: its STOP
+    // carries the metrics known so far.
+    script_active_ = false;
+    PublishEvent(kelvin::maneuver_event_t::STOP, 1, kNaN, sim_->time(), sim_->state()[sim::kPsi]);
+  }
+  DrainLcm();  // count what arrived during the last period
+  LogHelmProblems(MonotonicNanoseconds(), true);
+  if (summary_.realtime) pthread_setschedparam(pthread_self(), old_policy, &old_param);
   summary_.sim_time = sim_->time();
   summary_.helm = helm_.counters();
   summary_.late_ticks = pacer.late_ticks();

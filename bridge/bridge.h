@@ -44,6 +44,10 @@ struct BridgeOptions {
   double nmea_epoch = -1.0;  // s since the UNIX epoch at simulation time 0; < 0: the wall clock at start
   double max_lag = 1.0;      // s behind the schedule before the pacer re-anchors
   double log_interval = 1.0;  // s of wall-clock time between helm problem log lines
+  // SCHED_FIFO priority (1-99) of the thread that runs the loop, restored when
+  // Run() returns; 0 = normal scheduling. Needs root or CAP_SYS_NICE: without
+  // it the bridge warns and runs with normal scheduling.
+  int realtime_priority = 0;
 
   void Validate() const;  // throws kelvin::ArgumentError naming the option, its value and what is expected
 };
@@ -64,6 +68,7 @@ struct BridgeSummary {
   double max_lateness = 0;  // s
   long nmea_sentences_sent = 0;
   long nmea_sentences_dropped = 0;
+  bool realtime = false;    // the loop ran with SCHED_FIFO
   double step = 0;          // s, integrator step used
   int steps_per_state = 0;
 };
@@ -79,7 +84,7 @@ class Bridge {
   Bridge& operator=(const Bridge&) = delete;
 
   // Runs until the duration or the script ends, RequestStop() is called or
-  // the state diverges.
+  // the state diverges. Once per Bridge.
   BridgeSummary Run();
   // Safe from a signal handler or another thread.
   void RequestStop() { stop_.store(true, std::memory_order_relaxed); }
@@ -108,7 +113,9 @@ class Bridge {
   void Publish(const std::string& channel, const auto& message);
   void PublishEvent(std::int8_t kind, int index, double overshoot, double t, double psi);
   void SendNmea();
-  void LogHelmProblems(std::int64_t now_ns);
+  // Logs the helm problems since the last report, at most once per
+  // log_interval unless forced (at the end of the run).
+  void LogHelmProblems(std::int64_t now_ns, bool force);
 
   sim::ShipParameters ship_;
   BridgeOptions options_;
@@ -120,6 +127,7 @@ class Bridge {
   std::unique_ptr<sim::ManeuverController> controller_;
   bool script_active_ = false;
   bool script_finished_ = false;
+  bool ran_ = false;
   HelmFilter helm_;
   lcm_subscription_t* helm_subscription_ = nullptr;
   LocalOrigin origin_;

@@ -10,6 +10,8 @@ namespace kelvin::bridge {
 DerivativeSet LoadDerivativeSet(const std::filesystem::path& path) {
   const data::ConfigNode root = data::ConfigNode::LoadFile(path);
   if (!root.IsMap()) root.Fail("a derivative set (a map with a 'hull' section)");
+  // The sections `kelvin identify` writes (identification/derivative_set_io.h),
+  // and the check.
   root.ExpectKeys({"derivative_set", "hull", "standard_errors", "fit", "check"});
   DerivativeSet set;
   set.file = path.string();

@@ -1,11 +1,12 @@
 // Derivative sets: the hull derivatives the simulator streams, and whether
-// they passed their check against CFD. Identification writes the set; the
-// check against free-running CFD (a later stage) adds its `check` section:
+// they passed their check against CFD. `kelvin identify` writes the set
+// (identification/derivative_set_io.h); the check against free-running CFD (a
+// later stage) adds its `check` section:
 //
-//   derivative_set: {name: ..., ship: ..., source: ...}   # free text
-//   hull: {R0_prime: ..., ..., J_z_prime: ...}           # all 20, as in ship files
-//   standard_errors: {...}                                # optional, not used here
-//   fit: {...}                                            # optional, not used here
+//   derivative_set: {name: ..., ship: ..., source: ...}
+//   hull: {R0_prime: ..., ..., J_z_prime: ...}   # all 20, as in ship files
+//   standard_errors: {...}                       # not read by the bridge
+//   fit: {...}                                   # not read by the bridge
 //   check: {passed: true|false, reference: ..., date: ..., summary: ...}
 //
 // The hull section of a published ship file is a reference set: it was not
@@ -29,7 +30,7 @@ struct DerivativeCheck {
 
 struct DerivativeSet {
   std::string file;
-  std::string name;
+  std::string name;  // derivative_set.name, if given
   sim::HullCoefficients<double> hull;
   std::optional<DerivativeCheck> check;
 };

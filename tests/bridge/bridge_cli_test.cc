@@ -148,6 +148,35 @@ TEST(BridgeCli, ScriptedZigZagRunsToItsEnd) {
   EXPECT_THAT(r.output, HasSubstr("bridge completed: t = 106.450 s, 2130 states, 9 events published (0 failed)"));
 }
 
+TEST(BridgeCli, NmeaWithoutAValueGoesToTheUsualPort) {
+  const auto r = Bridge("--nmea --lcm-url memq:// --duration 1 --speedup 100");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("NMEA 0183 to 127.0.0.1:10110 at 1 Hz"));
+  // 21 states at 2000 per wall-clock second; at 1 Hz a fix goes with every
+  // 2000th state: only the one at t = 0, six sentences.
+  EXPECT_THAT(r.output, HasSubstr("nmea: 6 sentences sent, 0 dropped"));
+}
+
+TEST(ListenCli, EachBadArgumentExitsTwoWithOneMessage) {
+  const BadArgument cases[] = {
+      {"--count -1", "kelvin: error: --count -1: expected a number of states >= 0"},
+      {"--idle-timeout 0", "kelvin: error: --idle-timeout 0: expected a positive time in s"},
+      {"--timeout -1", "kelvin: error: --timeout -1: expected a time >= 0 s"},
+      {"--lcm-url bogus://x", "kelvin: error: --lcm-url 'bogus://x': LCM cannot open this URL"},
+  };
+  for (const auto& c : cases) {
+    const auto r = testing::RunCommand(Kelvin() + " listen " + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
+    EXPECT_EQ(LastLine(r.output), c.message) << c.args;
+  }
+}
+
+TEST(ListenCli, StopsAtItsTimeoutWhenNothingArrives) {
+  const auto r = testing::RunCommand(Kelvin() + " listen --lcm-url memq:// --timeout 0.2");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("listen: 0 states, 0 events, 0 out of sequence, 0 malformed"));
+}
+
 TEST(BridgeCli, InterruptStopsTheBridgeCleanly) {
   // Without a script or duration the bridge runs until interrupted.
   const auto r = testing::RunCommand("timeout --preserve-status -s INT 1 " + Kelvin() + " bridge " + Ship() +

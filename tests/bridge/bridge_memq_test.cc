@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sched.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -221,6 +223,33 @@ TEST(BridgeMemq, HelmOrdersAreIgnoredWhileAScriptSteers) {
   EXPECT_EQ(s.helm.accepted, 1);
   EXPECT_EQ(s.helm_ignored_scripted, 1);
   EXPECT_DOUBLE_EQ(listener.states().back().rudder_order, -35 * kDeg);
+  // The run ends before the turning circle does: START, then STOP at 1 s.
+  ASSERT_EQ(listener.events().size(), 2u);
+  EXPECT_EQ(listener.events()[0].kind, kelvin::maneuver_event_t::START);
+  EXPECT_EQ(listener.events()[1].kind, kelvin::maneuver_event_t::STOP);
+  EXPECT_DOUBLE_EQ(listener.events()[1].t, 1.0);
+  EXPECT_TRUE(std::isnan(listener.events()[1].first_overshoot));
+}
+
+// The loop runs with SCHED_FIFO while Run() lasts (observed from a
+// subscriber callback, which runs on the bridge's thread) and the thread's
+// scheduling is restored afterwards.
+int g_policy_in_callback = -1;
+void RecordPolicy(const lcm_recv_buf_t*, const char*, void*) { g_policy_in_callback = sched_getscheduler(0); }
+
+TEST(BridgeMemq, RealtimePriorityHoldsForTheRunOnly) {
+  lcm::LCM lcm("memq://");
+  BridgeOptions o;
+  o.speedup = 100;
+  o.duration = 0.5;
+  o.realtime_priority = 10;
+  Bridge bridge(Kvlcc2(), o, lcm);
+  lcm_subscribe(lcm.getUnderlyingLCM(), bridge.state_channel().c_str(), &RecordPolicy, nullptr);
+  const int before = sched_getscheduler(0);
+  const BridgeSummary s = bridge.Run();
+  if (!s.realtime) GTEST_SKIP() << "no permission for SCHED_FIFO (needs root or CAP_SYS_NICE)";
+  EXPECT_EQ(g_policy_in_callback, SCHED_FIFO);
+  EXPECT_EQ(sched_getscheduler(0), before);
 }
 
 TEST(BridgeMemq, ChannelPrefixNamesTheChannels) {
@@ -316,6 +345,10 @@ TEST(BridgeOptions, EachBadOptionHasOneClearMessage) {
   o = {};
   o.helm.stale_timeout = 0;
   EXPECT_EQ(OptionError(o), "--stale-timeout 0: expected a positive time in s");
+  o = {};
+  o.realtime_priority = 100;
+  EXPECT_EQ(OptionError(o),
+            "--realtime-priority 100: expected a SCHED_FIFO priority between 1 and 99 (0 = normal scheduling)");
   o = {};
   o.helm.future_tolerance = -1;
   EXPECT_EQ(OptionError(o), "helm option future_tolerance = -1: expected a non-negative time in s");

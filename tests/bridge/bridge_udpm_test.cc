@@ -4,6 +4,7 @@
 // every state and event message, in order. Skips with a clear message when
 // the machine has no multicast route (add one with
 // `ip route add 224.0.0.0/4 dev lo`).
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -13,6 +14,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <lcm/lcm-cpp.hpp>
 #include <random>
 #include <string>
@@ -35,11 +38,19 @@ constexpr const char* kGroup = "239.255.76.67";
 // when destroyed, so no test leaves a process behind.
 class Child {
  public:
-  explicit Child(const std::vector<std::string>& argv) {
+  // stdout and stderr go to `output` if given.
+  explicit Child(const std::vector<std::string>& argv, const std::string& output = "") {
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
-    if (posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    if (!output.empty()) {
+      posix_spawn_file_actions_addopen(&actions, 1, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    }
+    if (posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
   }
   ~Child() {
     if (pid_ > 0 && !exited_) {
@@ -88,6 +99,13 @@ std::string MulticastProblem() {
   return "no multicast route on this machine; add one with 'ip route add 224.0.0.0/4 dev lo' (as root)";
 }
 
+std::string ReadFile(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
 std::string UniqueUrl() {
   std::random_device rd;
   const int port = 20000 + static_cast<int>(rd() % 20000);
@@ -121,6 +139,19 @@ TEST(BridgeUdpm, SecondProcessAndLcmLoggerReceiveEveryMessageInOrder) {
     }
     ASSERT_TRUE(ready) << "lcm-logger did not start logging " << url;
   }
+
+  // The project's listener program, as a third process: started first, the
+  // bridge only once it has subscribed; it stops 1 s after the last message.
+  const std::string listen_log = (dir / "listen.log").string(), listen_csv = (dir / "listen.csv").string();
+  Child listen({(testing::ToolsDir() / "kelvin").string(), "listen", "--lcm-url", url, "--channel-prefix",
+                "KELVIN_IPC", "--idle-timeout", "1", "--timeout", "120", "-o", listen_csv},
+               listen_log);
+  ASSERT_TRUE(listen.started());
+  for (int i = 0; i < 200 && ReadFile(listen_log).find("listen: subscribed") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  }
+  ASSERT_NE(ReadFile(listen_log).find("listen: subscribed to KELVIN_IPC_STATE"), std::string::npos)
+      << ReadFile(listen_log);
 
   Listener listener(lcm, "KELVIN_IPC");
   Child bridge({(testing::ToolsDir() / "kelvin").string(), "-q", "bridge",
@@ -157,6 +188,29 @@ TEST(BridgeUdpm, SecondProcessAndLcmLoggerReceiveEveryMessageInOrder) {
   ASSERT_EQ(listener.events().size(), 9u);  // START, 4 EXECUTE, 3 OVERSHOOT, STOP
   EXPECT_EQ(listener.events().front().kind, kelvin::maneuver_event_t::START);
   EXPECT_EQ(listener.events().back().kind, kelvin::maneuver_event_t::STOP);
+
+  // kelvin listen got the same states (CSV with 17 significant digits).
+  ASSERT_EQ(listen.Wait(), 0) << ReadFile(listen_log);
+  EXPECT_NE(ReadFile(listen_log).find("listen: 2130 states (seq 0..2129, t 0.000..106.450 s), 9 events, 0 out of "
+                                      "sequence, 0 malformed"),
+            std::string::npos)
+      << ReadFile(listen_log);
+  std::istringstream csv(ReadFile(listen_csv));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.substr(0, 10), "seq,t,x,y,");
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) {
+    long seq = -1;
+    double t = 0, x = 0, y = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%ld,%lf,%lf,%lf", &seq, &t, &x, &y), 4) << line;
+    ASSERT_LT(rows, listener.states().size());
+    EXPECT_EQ(seq, static_cast<long>(rows));
+    EXPECT_EQ(x, listener.states()[rows].x);
+    EXPECT_EQ(y, listener.states()[rows].y);
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2130u);
 
   if (!have_logger) GTEST_SKIP() << "lcm-logger not installed (Debian package lcm): the log half is not checked";
   logger->Signal(SIGINT);

@@ -9,6 +9,7 @@
 
 #include "bridge/derivative_set.h"
 #include "data/schema/errors.h"
+#include "identification/derivative_set_io.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::bridge {
@@ -24,11 +25,13 @@ std::filesystem::path WriteSet(const testing::ScopedTempDir& dir, const std::str
   const sim::ShipParameters ship = Kvlcc2();
   const auto path = dir / name;
   std::ofstream f(path);
-  f << "derivative_set:\n  name: test set\n  ship: KVLCC2\nhull:\n";
+  // The layout of `kelvin identify` (identification/derivative_set_io.cc).
+  f << "derivative_set:\n  name: test set\n  ship: KVLCC2\n  source: campaign.h5\nhull:\n";
   for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
     const std::string key(sim::HullCoefficients<double>::kNames[static_cast<std::size_t>(i)]);
     f << "  " << key << ": " << (key == "N_r" ? n_r : fmt::format("{}", ship.hull[i])) << "\n";
   }
+  f << "standard_errors:\n  N_r: 0.0004\nfit:\n  runs: 7\n  converged: true\n  warnings: []\n";
   f << extra << check;
   return path;
 }
@@ -48,6 +51,44 @@ TEST(DerivativeSet, LoadsTheHullAndThePassingCheck) {
   const DerivativeAssessment a = AssessDerivatives(ship, set, /*require_checked=*/true);
   EXPECT_EQ(a.status, DerivativeStatus::kChecked);
   EXPECT_EQ(a.message, "derivative set " + path.string() + " passed its check against free-running CFD zig-zag 20/20");
+}
+
+// The contract with identification: the YAML that `kelvin identify` writes
+// loads as a derivative set with the same hull coefficients, unchecked until
+// a check section is added.
+TEST(DerivativeSet, ReadsTheFileKelvinIdentifyWrites) {
+  const sim::ShipParameters ship = Kvlcc2();
+  ident::CaptiveCampaign campaign;
+  campaign.ship.name = "KVLCC2";
+  ident::JointFitResult fit;
+  fit.coefficients = ship.hull;
+  fit.coefficients.N_r = -0.0512345678901234;
+  for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
+    fit.status[static_cast<std::size_t>(i)] = ident::CoefficientStatus::kIdentified;
+    fit.std_error[static_cast<std::size_t>(i)] = 1e-3;
+  }
+  fit.converged = true;
+  ident::IdentificationReport report;
+  report.source = "virtual_campaign.h5";
+  report.campaign = &campaign;
+  report.fit = &fit;
+  const testing::ScopedTempDir dir;
+  const auto path = dir / "derivatives.yaml";
+  ident::WriteDerivativeYaml(report, path);
+
+  const DerivativeSet set = LoadDerivativeSet(path);
+  EXPECT_EQ(set.name, "KVLCC2 hull derivatives identified by kelvin identify");
+  for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
+    EXPECT_EQ(set.hull[i], fit.coefficients[i]) << sim::HullCoefficients<double>::kNames[static_cast<std::size_t>(i)];
+  }
+  EXPECT_FALSE(set.check.has_value());
+  EXPECT_EQ(AssessDerivatives(ship, set, false).status, DerivativeStatus::kUnchecked);
+
+  // The check stage appends its section.
+  std::ofstream(path, std::ios::app) << "check:\n  passed: true\n  reference: CFD zig-zag 10/10\n";
+  const DerivativeSet checked = LoadDerivativeSet(path);
+  ASSERT_TRUE(checked.check.has_value());
+  EXPECT_EQ(AssessDerivatives(ship, checked, true).status, DerivativeStatus::kChecked);
 }
 
 TEST(DerivativeSet, ShipFileSetIsAReferenceNotCfdChecked) {

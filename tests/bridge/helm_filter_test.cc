@@ -18,6 +18,11 @@
 #include "simulator/mmg/ship_parameters.h"
 #include "tests/test_utilities/test_utilities.h"
 
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
+
+#include <sstream>
+
 namespace kelvin::bridge {
 namespace {
 
@@ -359,6 +364,37 @@ TEST(HelmFuzz, TenThousandCommandsThroughTheBridge) {
   // The last accepted order is the one in force.
   EXPECT_EQ(listener.states().back().rudder_order, fuzz.last_rudder);
   EXPECT_EQ(listener.states().back().propeller_rps_order, fuzz.last_rps);
+}
+
+TEST(HelmLog, RejectionsAreSummarisedAtMostOncePerInterval) {
+  std::ostringstream log;
+  auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(
+      std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+  spdlog::set_pattern("%v");
+  const sim::ShipParameters ship = sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
+  lcm::LCM lcm("memq://");
+  BridgeOptions o;
+  o.speedup = 100;
+  o.duration = 1;
+  o.log_interval = 60;  // longer than the run: only the final summary line
+  o.helm.sources = {1};
+  Bridge bridge(ship, o, lcm);
+  for (int i = 0; i < 100; ++i) {
+    kelvin::helm_command_t c = Command(kNaN, 5, RealtimeMicroseconds(), 1);
+    lcm.publish(bridge.helm_channel(), &c);
+  }
+  kelvin::helm_command_t c = Command(0.1, 5, RealtimeMicroseconds(), 9);
+  lcm.publish(bridge.helm_channel(), &c);
+  const BridgeSummary s = bridge.Run();
+  spdlog::set_default_logger(previous);
+  EXPECT_EQ(s.helm.not_finite, 100);
+  EXPECT_EQ(s.helm.unknown_source, 1);
+  EXPECT_EQ(log.str(),
+            "helm: 101 rejected (0 malformed, 100 not finite, 0 out of range, 0 stale, 0 from the future, 1 unknown "
+            "source) and 0 clamped since the last report; latest: helm command from source 9 rejected (unknown "
+            "source): source_id is not in the accepted sources (rudder_order 0.1 rad, rps_order 5 1/s, utime " +
+            std::to_string(c.utime) + " us)\n");
 }
 
 }  // namespace

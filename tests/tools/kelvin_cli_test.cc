@@ -3,6 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
+#include <fstream>
+
 #include "tests/test_utilities/test_utilities.h"
 
 namespace {
@@ -120,6 +123,52 @@ TEST(KelvinHullTest, ShipWithoutGeometryIsOneClearError) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(CountLines(r.output), 1) << r.output;
   EXPECT_THAT(r.output, HasSubstr("missing required key 'geometry'"));
+}
+
+}  // namespace
+
+namespace {
+
+// The pipeline that exists today, end to end through the files each stage
+// writes: a virtual captive campaign of the KVLCC2 (2% force noise), the
+// joint fit, and a 35 deg turning circle with the identified set, which must
+// match the turning circle of the published set (Yasukawa & Yoshimura 2015)
+// within 1% in advance and tactical diameter.
+TEST(KelvinPipelineTest, CaptiveIdentifySimulate) {
+  kelvin::testing::ScopedTempDir dir;
+  const std::string campaign = (kelvin::testing::SourceDir() / "data/cases/kvlcc2_virtual_captive.yaml").string();
+  const std::string h5 = (dir / "campaign.h5").string(), yaml = (dir / "d.yaml").string();
+  auto r = RunCommand(Kelvin() + " captive " + campaign + " -o " + h5);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("13 runs"));
+  r = RunCommand(Kelvin() + " identify " + h5 + " -o " + yaml);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto advance_and_tactical = [&](const std::string& extra, const std::string& out) {
+    const auto s = RunCommand(Kelvin() + " simulate " + Ship() + " -m turning:35:stbd -o " + out + " " + extra);
+    EXPECT_EQ(s.exit_code, 0) << s.output;
+    std::array<double, 2> v{};
+    for (int i = 0; i < 2; ++i) {
+      const std::string key = i == 0 ? "advance_over_L" : "tactical_diameter_over_L";
+      const auto pos = s.output.find(key);
+      EXPECT_NE(pos, std::string::npos) << s.output;
+      if (pos != std::string::npos) v[i] = std::stod(s.output.substr(pos + key.size()));
+    }
+    return v;
+  };
+  const auto truth = advance_and_tactical("", (dir / "truth").string());
+  const auto fitted = advance_and_tactical("--derivatives " + yaml, (dir / "fitted").string());
+  EXPECT_NEAR(fitted[0] / truth[0], 1.0, 0.01) << "advance/L " << fitted[0] << " vs " << truth[0];
+  EXPECT_NEAR(fitted[1] / truth[1], 1.0, 0.01) << "tactical/L " << fitted[1] << " vs " << truth[1];
+}
+
+TEST(KelvinCaptiveTest, BadCampaignExitsOne) {
+  kelvin::testing::ScopedTempDir dir;
+  const auto bad = dir / "c.yaml";
+  std::ofstream(bad) << "campaign: {name: a, ship: s.yaml, solver: lfs}\ntests: {pure_sway_v_prime: [0.1]}\n";
+  const auto r = RunCommand(Kelvin() + " captive " + bad.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(CountLines(r.output), 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("key 'campaign.solver' = 'lfs'"));
 }
 
 }  // namespace

@@ -19,7 +19,7 @@
 #include "cfd/grid/hull_grid.h"
 #include "cfd/grid/mesh_case.h"
 #include "cfd/grid/mesh_writer.h"
-#include "data/schema/atomic_file.h"
+#include "tools/bench/markdown_section.h"
 
 namespace {
 
@@ -28,26 +28,6 @@ namespace fs = std::filesystem;
 
 double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-void ReplaceSection(const std::string& file, const std::string& section) {
-  const std::string begin = "<!-- mesh:begin -->", end = "<!-- mesh:end -->";
-  std::string text;
-  {
-    std::ifstream in(file);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    text = ss.str();
-  }
-  const auto b = text.find(begin), e = text.find(end);
-  const std::string block = begin + "\n" + section + end;
-  if (b != std::string::npos && e != std::string::npos && e > b) {
-    text.replace(b, e + end.size() - b, block);
-  } else {
-    if (!text.empty() && text.back() != '\n') text += '\n';
-    text += "\n" + block + "\n";
-  }
-  kelvin::data::WriteFileAtomically(file, text);
 }
 
 }  // namespace
@@ -129,6 +109,6 @@ int main(int argc, char** argv) {
       "(writing the case, the tools, reading the polyMesh back, quality report) took {:.1f} s.\n\n",
       rate_builtin / rate_snappy, t_snappy_total);
   fmt::print("{}", md);
-  if (!write_to.empty()) ReplaceSection(write_to, md);
+  if (!write_to.empty()) kelvin::bench::ReplaceMarkdownSection(write_to, "mesh", md);
   return 0;
 }

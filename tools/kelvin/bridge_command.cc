@@ -115,8 +115,8 @@ void RunBridge(BridgeArgs& a) {
              "{} stale, {} from the future, {} unknown source; {} ignored while scripted\n",
              h.received, h.accepted, h.clamped, h.rejected(), h.malformed, h.not_finite, h.out_of_range, h.stale,
              h.future, h.unknown_source, s.helm_ignored_scripted);
-  fmt::print("  pacing: {} late ticks, {} resyncs, max lateness {:.3f} ms\n", s.late_ticks, s.resyncs,
-             s.max_lateness * 1e3);
+  fmt::print("  pacing{}: {} late ticks, {} resyncs, max lateness {:.3f} ms\n", s.realtime ? " (SCHED_FIFO)" : "",
+             s.late_ticks, s.resyncs, s.max_lateness * 1e3);
   if (o.nmea) fmt::print("  nmea: {} sentences sent, {} dropped\n", s.nmea_sentences_sent, s.nmea_sentences_dropped);
   if (s.status == bridge::BridgeStatus::kDiverged) {
     throw std::runtime_error(fmt::format("simulation diverged at t = {} s", s.sim_time));
@@ -145,11 +145,15 @@ Command AddBridgeCommand(CLI::App& app) {
   cmd->add_option("--lcm-url", args->lcm_url, "LCM URL (default: LCM's, e.g. udpm://239.255.76.67:7667?ttl=0)");
   cmd->add_option("--channel-prefix", o.channel_prefix, "Channels <prefix>_STATE, <prefix>_HELM, <prefix>_EVENT")
       ->capture_default_str();
-  cmd->add_option("--nmea", args->nmea, "Send NMEA 0183 over UDP to host:port (the usual one: 127.0.0.1:10110)");
+  cmd->add_option("--nmea", args->nmea, "Send NMEA 0183 over UDP to host:port (without a value: 127.0.0.1:10110)")
+      ->expected(0, 1)
+      ->default_str("127.0.0.1:10110");
   cmd->add_option("--nmea-rate", o.nmea_rate, "NMEA fixes per wall-clock second, 1 to 10")->capture_default_str();
   cmd->add_option("--origin", args->origin, "Latitude,longitude in deg of the start position (default 53.5,3.0)");
   cmd->add_option("--stale-timeout", o.helm.stale_timeout, "Reject helm commands older than this (s)")
       ->capture_default_str();
+  cmd->add_option("--realtime-priority", o.realtime_priority,
+                  "Run the loop with SCHED_FIFO at this priority, 1-99 (needs root or CAP_SYS_NICE)");
   cmd->add_option("--helm-source", args->helm_sources, "Accept helm commands only from this source_id (repeatable)");
   return {cmd, [args] { RunBridge(*args); }};
 }

@@ -17,9 +17,11 @@ struct Command {
 
 Command AddSimulateCommand(CLI::App& app);
 Command AddHullCommand(CLI::App& app);
+Command AddCaptiveCommand(CLI::App& app);
 Command AddBridgeCommand(CLI::App& app);
 Command AddMeshCommand(CLI::App& app);
 Command AddIdentifyCommand(CLI::App& app);
+Command AddListenCommand(CLI::App& app);
 
 // Every subcommand, in the order `kelvin --help` lists them.
 std::vector<Command> AddCommands(CLI::App& app);

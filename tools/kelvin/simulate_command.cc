@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bridge/derivative_set.h"
 #include "data/schema/errors.h"
 #include "simulator/maneuvers/runner.h"
 #include "tools/kelvin/commands.h"
@@ -24,6 +25,7 @@ struct SimulateArgs {
   bool friction_correction = false;
   double output_interval = 0.0;
   std::string output_dir = "results/simulate";
+  std::string derivatives;
 };
 
 std::string FileStem(const std::string& ship, const std::string& maneuver) {
@@ -36,6 +38,12 @@ std::string FileStem(const std::string& ship, const std::string& maneuver) {
 
 void RunSimulate(const SimulateArgs& a) {
   sim::ShipParameters ship = sim::LoadShip(a.ship_file);
+  if (!a.derivatives.empty()) {
+    const bridge::DerivativeSet set = bridge::LoadDerivativeSet(a.derivatives);
+    ship.hull = set.hull;
+    ship.Validate(a.derivatives);
+    spdlog::info("hull derivatives and added masses from {} ({})", a.derivatives, set.name);
+  }
   if (a.scale == "full") {
     ship = sim::ScaleShip(ship, ship.scale, a.friction_correction);
     ship.scale_name = "full scale";
@@ -89,6 +97,8 @@ Command AddSimulateCommand(CLI::App& app) {
   cmd->add_flag("--friction-correction", args->friction_correction,
                 "Correct R0' by the ITTC-1957 friction line when scaling");
   cmd->add_option("--output-interval", args->output_interval, "Seconds between recorded samples");
+  cmd->add_option("--derivatives", args->derivatives, "Derivative set replacing the ship file's hull section")
+      ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output_dir, "Output directory")->capture_default_str();
   return {cmd, [args] { RunSimulate(*args); }};
 }
