@@ -55,6 +55,9 @@ TEST(HullGridTest, WigleyVolumeFromTheGridMatchesFourNinthsLBT) {
   const Mesh mesh = MakeHullGrid(wigley, o);
   const double exact = 4.0 / 9.0 * kL * kB * kT;
   const double v = HullPatchVolume(mesh);
+  fmt::print(
+      "Wigley grid: hull patch volume {:.9g} m^3, 4/9 L B T = {:.9g} m^3, relative error {:.3e}\n",
+      v, exact, v / exact - 1.0);
   EXPECT_NEAR(v / exact, 1.0, 1e-3) << "hull patch volume " << v << " exact " << exact;
 
   // The hull faces interpolate the surface bilinearly between nodes that lie
@@ -100,6 +103,10 @@ TEST(HullGridTest, WigleyFromASlicedStlSurfaceMatchesTheExactVolume) {
   o.cells_girth = 40;
   const Mesh mesh = MakeHullGrid(sliced, o);
   const double exact = 4.0 / 9.0 * kL * kB * kT;
+  fmt::print(
+      "sliced STL Wigley grid: hull patch volume / (4/9 L B T) - 1 = {:.3e} (STL itself: {:.3e})\n",
+      HullPatchVolume(mesh) / exact - 1.0,
+      UnderwaterVolume(WigleySurface(kL, kB, kT, 0.2 * kT, 400, 96)) / exact - 1.0);
   EXPECT_NEAR(HullPatchVolume(mesh) / exact, 1.0, 1e-3);
   EXPECT_GT(mesh.Quality().min_volume, 0.0);
 }
