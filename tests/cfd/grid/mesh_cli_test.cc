@@ -3,8 +3,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 
+#include "cfd/geometry/hydrostatics.h"
+#include "cfd/grid/hull_grid.h"
+#include "cfd/mesh/poly_mesh_reader.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin {
@@ -42,6 +46,41 @@ TEST(MeshCliTest, WritesAFamilyOfThreeGrids) {
   // Re = U L / nu = 2 * 2.5 / 1e-6.
   EXPECT_THAT(r.output, HasSubstr("Re = 5e+06"));
   EXPECT_THAT(r.output, HasSubstr("family: 3 grids, ratio 1.41421"));
+}
+
+// The STL path of the built-in generator: a Wigley hull written as binary
+// STL in its own units and placement (mm, keel at z = 0, waterline at
+// z = T), described by a ship file, meshed by slicing its sections.
+TEST(MeshCliTest, StructuredGridOfAnStlHullFromAShipFile) {
+  ScopedTempDir dir;
+  cfd::TriangleSurface hull = cfd::WigleySurface(2.5, 0.25, 0.15625, 0.05, 240, 48);
+  for (auto& v : hull.vertices) {
+    v.z() += 0.15625;
+    v *= 1000.0;
+  }
+  cfd::WriteStl(hull, dir / "wigley.stl");
+  Write(dir / "wigley_ship.yaml", R"(ship: {name: Wigley}
+principal: {Lpp: 2.5, B: 0.25, d: 0.15625, nu: 1.0e-6}
+geometry: {file: wigley.stl, length_unit: 0.001, x_ap: 0.0, waterline_z: 0.15625, bow_direction: "+x"}
+)");
+  std::string text = kCase;
+  text.replace(text.find("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}"),
+               std::string("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}").size(),
+               "    ship: wigley_ship.yaml");
+  text.replace(text.find("flow: {speed: 2.0, viscosity: 1.0e-6}"), std::string("flow: {speed: 2.0, viscosity: 1.0e-6}").size(),
+               "flow: {speed: 2.0}");
+  Write(dir / "stl_case.yaml", text);
+  const auto r = RunCommand(Kelvin() + " mesh " + (dir / "stl_case.yaml").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // Re from the ship file's Lpp and nu; the sliced hull encloses the Wigley
+  // volume 4/9 L B T = 0.0434028 m^3 to the faceting of 24 x 12 hull faces
+  // (about 0.5%, the product trapezoid rule, see hull_grid_test).
+  EXPECT_THAT(r.output, HasSubstr("Re = 5e+06"));
+  const cfd::Mesh mesh = cfd::ReadPolyMesh(dir / "grids/constant/polyMesh");
+  const double exact = 4.0 / 9.0 * 2.5 * 0.25 * 0.15625;
+  std::printf("sliced STL hull volume / (4/9 L B T) - 1 = %.3e\n", cfd::HullPatchVolume(mesh) / exact - 1.0);
+  EXPECT_NEAR(cfd::HullPatchVolume(mesh) / exact, 1.0, 0.01);
+  EXPECT_LT(mesh.Quality().max_non_orthogonality, 60.0);
 }
 
 TEST(MeshCliTest, BadCaseFileExitsWithOneMessage) {
