@@ -67,8 +67,8 @@ geometry: {file: wigley.stl, length_unit: 0.001, x_ap: 0.0, waterline_z: 0.15625
   text.replace(text.find("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}"),
                std::string("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}").size(),
                "    ship: wigley_ship.yaml");
-  text.replace(text.find("flow: {speed: 2.0, viscosity: 1.0e-6}"), std::string("flow: {speed: 2.0, viscosity: 1.0e-6}").size(),
-               "flow: {speed: 2.0}");
+  text.replace(text.find("flow: {speed: 2.0, viscosity: 1.0e-6}"),
+               std::string("flow: {speed: 2.0, viscosity: 1.0e-6}").size(), "flow: {speed: 2.0}");
   Write(dir / "stl_case.yaml", text);
   const auto r = RunCommand(Kelvin() + " mesh " + (dir / "stl_case.yaml").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -78,7 +78,8 @@ geometry: {file: wigley.stl, length_unit: 0.001, x_ap: 0.0, waterline_z: 0.15625
   EXPECT_THAT(r.output, HasSubstr("Re = 5e+06"));
   const cfd::Mesh mesh = cfd::ReadPolyMesh(dir / "grids/constant/polyMesh");
   const double exact = 4.0 / 9.0 * 2.5 * 0.25 * 0.15625;
-  std::printf("sliced STL hull volume / (4/9 L B T) - 1 = %.3e\n", cfd::HullPatchVolume(mesh) / exact - 1.0);
+  std::printf("sliced STL hull volume / (4/9 L B T) - 1 = %.3e\n",
+              cfd::HullPatchVolume(mesh) / exact - 1.0);
   EXPECT_NEAR(cfd::HullPatchVolume(mesh) / exact, 1.0, 0.01);
   EXPECT_LT(mesh.Quality().max_non_orthogonality, 60.0);
 }
