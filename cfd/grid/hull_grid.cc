@@ -15,9 +15,10 @@ namespace kelvin::cfd {
 namespace {
 
 // Lines leave the inner boundary with slope tau (dz per unit horizontal
-// distance) and relax to horizontal over kRelaxFraction * draft. tau is made
-// k-Lipschitz along z with k = kLipschitz / relax length, so neighbouring
-// lines approach each other by at most kLipschitz of their spacing.
+// distance) and relax to horizontal over one relaxation length l for the
+// whole grid, l = max(kRelaxFraction * draft, kOffsetDecay * beam). tau is
+// made k-Lipschitz along z with k = kLipschitz / l, so neighbouring lines
+// approach each other by at most kLipschitz of their spacing.
 constexpr double kRelaxFraction = 0.4;
 constexpr double kLipschitz = 0.5;
 // The relaxation length is at least kOffsetDecay times the largest beam, so
