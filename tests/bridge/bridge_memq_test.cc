@@ -21,6 +21,7 @@
 #include "simulator/maneuvers/runner.h"
 #include "simulator/mmg/ship_parameters.h"
 #include "tests/test_utilities/test_utilities.h"
+#include "tests/simulator/simulator_test_utilities.h"
 
 namespace kelvin::bridge {
 namespace {
@@ -28,7 +29,7 @@ namespace {
 using ::testing::HasSubstr;
 constexpr double kDeg = M_PI / 180.0;
 
-sim::ShipParameters Kvlcc2() { return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml"); }
+using sim::testing::Kvlcc2;
 
 // Delivers what the bridge published after its last drain.
 void Flush(lcm::LCM& lcm) {

@@ -11,13 +11,14 @@
 #include "data/schema/errors.h"
 #include "identification/derivative_set_io.h"
 #include "tests/test_utilities/test_utilities.h"
+#include "tests/simulator/simulator_test_utilities.h"
 
 namespace kelvin::bridge {
 namespace {
 
 using ::testing::HasSubstr;
 
-sim::ShipParameters Kvlcc2() { return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml"); }
+using sim::testing::Kvlcc2;
 
 // A derivative file with the KVLCC2 hull, N_r replaced, and `check` text.
 std::filesystem::path WriteSet(const testing::ScopedTempDir& dir, const std::string& name, const std::string& check,

@@ -13,14 +13,13 @@
 #include "data/schema/h5_file.h"
 #include "identification/virtual_captive.h"
 #include "tests/test_utilities/test_utilities.h"
+#include "tests/simulator/simulator_test_utilities.h"
 
 namespace kelvin::ident {
 namespace {
 
 // KVLCC2 L7 model of Yasukawa & Yoshimura (2015) (data/ships/kvlcc2.yaml).
-sim::ShipParameters Kvlcc2() {
-  return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
-}
+using sim::testing::Kvlcc2;
 
 CaptiveCampaign SmallCampaign() {
   const sim::ShipParameters ship = Kvlcc2();

@@ -12,13 +12,12 @@
 #include "identification/captive_force_model.h"
 #include "identification/virtual_captive.h"
 #include "tests/test_utilities/test_utilities.h"
+#include "tests/simulator/simulator_test_utilities.h"
 
 namespace kelvin::ident {
 namespace {
 
-sim::ShipParameters Kvlcc2() {
-  return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
-}
+using sim::testing::Kvlcc2;
 
 MotionParameters Motion(MotionKind kind) {
   MotionParameters m;

@@ -9,23 +9,16 @@
 #include "identification/joint_fit.h"
 #include "identification/virtual_captive.h"
 #include "tests/test_utilities/test_utilities.h"
+#include "tests/identification/identification_test_utilities.h"
 
 namespace kelvin::ident {
 namespace {
 
 constexpr const auto& kNames = sim::HullCoefficients<double>::kNames;
 
-sim::ShipParameters Kvlcc2() {
-  return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
-}
+using sim::testing::Kvlcc2;
 
-CaptiveCampaign StandardCampaign(const sim::ShipParameters& ship, bool combined,
-                                 bool inertia = true) {
-  VirtualCaptiveOptions o;
-  o.include_rigid_body_inertia = inertia;
-  return GenerateCampaign(sim::MmgModel<double>(ship),
-                          StandardDesign(ship.approach_speed, combined), o);
-}
+using fixtures::StandardCampaign;
 
 // Acceptance 2: 5% Gaussian noise (of each run's channel RMS), 20 seeds. All
 // 20 coefficients are kept free (fix_unidentifiable = false) so that every

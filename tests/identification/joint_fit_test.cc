@@ -12,6 +12,7 @@
 #include "identification/captive_io.h"
 #include "identification/virtual_captive.h"
 #include "tests/test_utilities/test_utilities.h"
+#include "tests/identification/identification_test_utilities.h"
 
 namespace kelvin::ident {
 namespace {
@@ -20,19 +21,11 @@ constexpr const auto& kNames = sim::HullCoefficients<double>::kNames;
 constexpr int kR0 = 0, kXvr = 2, kYv = 5, kYr = 6, kYvvr = 8, kYvrr = 9, kNv = 11, kNr = 12,
               kNvvr = 14, kNvrr = 15, kMx = 17, kMy = 18, kJz = 19;
 
-sim::ShipParameters Kvlcc2() {
-  return sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
-}
+using sim::testing::Kvlcc2;
 
 bool IsAddedMass(int i) { return i >= kMx; }
 
-CaptiveCampaign StandardCampaign(const sim::ShipParameters& ship, bool combined,
-                                 bool inertia = true) {
-  VirtualCaptiveOptions o;
-  o.include_rigid_body_inertia = inertia;
-  return GenerateCampaign(sim::MmgModel<double>(ship),
-                          StandardDesign(ship.approach_speed, combined), o);
-}
+using fixtures::StandardCampaign;
 
 // Acceptance 1: the full campaign (static drift at 0..20 deg, pure sway and
 // pure yaw at two amplitudes, yaw with drift), written to HDF5 and read back,
