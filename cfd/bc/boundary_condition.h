@@ -137,6 +137,14 @@ class ZeroGradient : public BoundaryCondition<T> {
   std::string type() const override { return "zeroGradient"; }
 };
 
+// Front and back of a one-cell-thick 2D mesh: no flux and no diffusion, as
+// OpenFOAM's "empty" (the solver does not solve the normal component).
+template <typename T>
+class Empty : public ZeroGradient<T> {
+ public:
+  std::string type() const override { return "empty"; }
+};
+
 // No-slip wall moving rigidly: u_b = U + omega x (x_f - x0). With zero
 // rates it is the stationary no-slip wall.
 class MovingWall : public BoundaryCondition<Vector3> {

@@ -72,6 +72,12 @@ NonOrthGeometry::NonOrthGeometry(const Mesh& mesh) {
     delta_coeffs[f] = 1.0 / std::max(n.dot(d), 0.05 * d.norm());
     correction[f] = n - d * delta_coeffs[f];
   }
+  boundary_correction.resize(mesh.n_boundary_faces());
+  for (int f = ni; f < mesh.n_faces(); ++f) {
+    const Vector3 n = mesh.face_areas()[f] / mesh.face_area_magnitudes()[f];
+    const Vector3& d = mesh.deltas()[f];
+    boundary_correction[f - ni] = n - d / std::max(n.dot(d), 0.05 * d.norm());
+  }
 }
 
 template <typename T>
@@ -194,6 +200,15 @@ void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const
       const int f = patch.start + i;
       m.internal_coeffs[f - ni] -= gamma * mag[f] * bc.gradient_internal()[i];
       m.boundary_coeffs[f - ni] += gamma * mag[f] * bc.gradient_boundary()[i];
+      if (grad) {
+        // Skewed wall cell: the part of dc (phi_b - phi_P) along the face,
+        // weighted by how much the condition fixes the value (-gi / dc).
+        const double n_dot_d = mesh.face_areas()[f].dot(mesh.deltas()[f]) / mag[f];
+        const double dc = 1.0 / std::max(n_dot_d, 0.05 * mesh.deltas()[f].norm());
+        const T fraction = -bc.gradient_internal()[i] / dc;
+        const T tangential = Dot((*grad)[owner[f]], geo.boundary_correction[f - ni]);
+        m.source[owner[f]] += gamma * mag[f] * Traits<T>::Mul(fraction, tangential);
+      }
     }
   }
 }

@@ -85,6 +85,9 @@ struct NonOrthGeometry {
   explicit NonOrthGeometry(const Mesh& mesh);
   std::vector<double> delta_coeffs;    // internal faces
   std::vector<Vector3> correction;     // internal faces
+  // Boundary faces: n - d_b / (n . d_b) with d_b = x_f - x_P, so that
+  // snGrad = dc (phi_b - phi_P) + k_b . grad(phi)_P on skewed wall cells.
+  std::vector<Vector3> boundary_correction;
 };
 
 }  // namespace kelvin::cfd

@@ -18,6 +18,10 @@ struct SchemeOptions {
   // Explicit non-orthogonal correction of the Laplacians (face gradient from
   // the interpolated cell gradient).
   bool non_orthogonal_correction = true;
+  // Skewness correction of the face interpolation in the Rhie-Chow flux
+  // (phi_f += grad(phi)_f . (x_f - x_f')): keeps second order on skewed and
+  // polyhedral meshes, at the cost of one more vector gradient per corrector.
+  bool skew_correction = false;
   void Validate() const { gradient.Validate(); }
 };
 

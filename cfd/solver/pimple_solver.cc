@@ -51,6 +51,15 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
     throw ConfigError(fmt::format("solution.p_ref_cell = {}; expected a cell index in [0, {})", pimple_.p_ref_cell,
                                   mesh.n_cells()));
   }
+  for (const Patch& patch : mesh.patches()) {
+    if (patch.kind != PatchKind::kEmpty) continue;
+    for (int f = patch.start; f < patch.start + patch.size; ++f) {
+      const Vector3 n = mesh.face_areas()[f] / mesh.face_area_magnitudes()[f];
+      for (int k = 0; k < 3; ++k) {
+        if (std::abs(n[k]) > 0.99) solve_component_[k] = false;
+      }
+    }
+  }
   momentum_solver_ = LinearSolver::Create(pimple_.momentum_solver);
   pressure_solver_ = LinearSolver::Create(pimple_.pressure_solver);
 }
@@ -99,6 +108,10 @@ double PimpleSolver::SolveMomentum(const std::vector<Vector3>& grad_p, StepSumma
   const auto vol = mesh_.cell_volumes();
   double worst = 0.0;
   for (int k = 0; k < 3; ++k) {
+    if (!solve_component_[k]) {
+      for (int c = 0; c < mesh_.n_cells(); ++c) (*U_)[c][k] = 0.0;
+      continue;
+    }
     UEqn_.ComponentSystem(k, diag_k, source_k);
     for (int c = 0; c < mesh_.n_cells(); ++c) {
       source_k[c] -= grad_p[c][k] * vol[c];
@@ -135,34 +148,47 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
 
   // Rhie-Chow flux of HbyA with the transient and relaxation-consistent terms.
   std::vector<double> phi_HbyA(nf), rAUf(nf);
-  const bool backward = schemes_.time == TimeScheme::kBackward && U_->n_old() >= 2 && phi_old_.size() >= 2;
-  for (int f = 0; f < ni; ++f) {
-    const int P = owner[f], N = neighbour[f];
-    rAUf[f] = w[f] * rAU[P] + (1.0 - w[f]) * rAU[N];
-    phi_HbyA[f] = (w[f] * HbyA[P] + (1.0 - w[f]) * HbyA[N]).dot(sf[f]);
-    double ddt_corr;
-    if (backward) {
-      const Vector3 u_old = w[f] * (2.0 * U_->old(0)[P] - 0.5 * U_->old(1)[P]) +
-                            (1.0 - w[f]) * (2.0 * U_->old(0)[N] - 0.5 * U_->old(1)[N]);
-      ddt_corr = (2.0 * phi_old_[0][f] - 0.5 * phi_old_[1][f] - u_old.dot(sf[f])) / dt;
-    } else {
-      const Vector3 u_old = w[f] * U_->old(0)[P] + (1.0 - w[f]) * U_->old(0)[N];
-      ddt_corr = (phi_old_[0][f] - u_old.dot(sf[f])) / dt;
-    }
-    phi_HbyA[f] += rAUf[f] * ddt_corr;
-    if (alpha_U < 1.0) {
-      const Vector3 u_prev = w[f] * U_prev[P] + (1.0 - w[f]) * U_prev[N];
-      phi_HbyA[f] += (1.0 - alpha_U) * (phi_prev[f] - u_prev.dot(sf[f]));
-    }
-  }
+  std::vector<Vector3> HbyA_boundary(nf - ni);
   for (int p = 0; p < U_->n_patches(); ++p) {
     const Patch& patch = mesh_.patches()[p];
     const auto& bc = U_->bc(p);
     for (int i = 0; i < patch.size; ++i) {
       const int f = patch.start + i;
       rAUf[f] = rAU[owner[f]];
-      const Vector3 hb = bc.value_internal()[i].cwiseProduct(HbyA[owner[f]]) + bc.value_boundary()[i];
-      phi_HbyA[f] = hb.dot(sf[f]);
+      HbyA_boundary[f - ni] = bc.value_internal()[i].cwiseProduct(HbyA[owner[f]]) + bc.value_boundary()[i];
+      phi_HbyA[f] = HbyA_boundary[f - ni].dot(sf[f]);
+    }
+  }
+  const bool skew = schemes_.skew_correction;
+  if (skew) {
+    grad_.Compute(std::span<const Vector3>(HbyA), std::span<const Vector3>(HbyA_boundary), grad_HbyA_);
+  }
+  const auto skew_vec = mesh_.skew_vectors();
+  // Face interpolation, skew-corrected with the gradient g when asked.
+  auto interp = [&](const std::vector<Vector3>& v, const std::vector<Matrix3>& g, int f, int P, int N) {
+    Vector3 out = w[f] * v[P] + (1.0 - w[f]) * v[N];
+    if (skew) out += (w[f] * g[P] + (1.0 - w[f]) * g[N]) * skew_vec[f];
+    return out;
+  };
+  const bool backward = schemes_.time == TimeScheme::kBackward && U_->n_old() >= 2 && phi_old_.size() >= 2;
+  for (int f = 0; f < ni; ++f) {
+    const int P = owner[f], N = neighbour[f];
+    rAUf[f] = w[f] * rAU[P] + (1.0 - w[f]) * rAU[N];
+    phi_HbyA[f] = interp(HbyA, grad_HbyA_, f, P, N).dot(sf[f]);
+    double ddt_corr;
+    if (backward) {
+      Vector3 u_old = w[f] * (2.0 * U_->old(0)[P] - 0.5 * U_->old(1)[P]) +
+                      (1.0 - w[f]) * (2.0 * U_->old(0)[N] - 0.5 * U_->old(1)[N]);
+      if (skew) u_old += 1.5 * (w[f] * grad_U_old_[P] + (1.0 - w[f]) * grad_U_old_[N]) * skew_vec[f];
+      ddt_corr = (2.0 * phi_old_[0][f] - 0.5 * phi_old_[1][f] - u_old.dot(sf[f])) / dt;
+    } else {
+      const Vector3 u_old = interp(U_->old(0), grad_U_old_, f, P, N);
+      ddt_corr = (phi_old_[0][f] - u_old.dot(sf[f])) / dt;
+    }
+    phi_HbyA[f] += rAUf[f] * ddt_corr;
+    if (alpha_U < 1.0) {
+      const Vector3 u_prev = interp(U_prev, grad_U_, f, P, N);
+      phi_HbyA[f] += (1.0 - alpha_U) * (phi_prev[f] - u_prev.dot(sf[f]));
     }
   }
 
@@ -249,7 +275,12 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
     p_->bc(p).CorrectAfterFlux(ctx, phi_);
   }
   grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
-  for (int c = 0; c < nc; ++c) (*U_)[c] = HbyA[c] - rAU[c] * grad_p_[c];
+  for (int c = 0; c < nc; ++c) {
+    (*U_)[c] = HbyA[c] - rAU[c] * grad_p_[c];
+    for (int k = 0; k < 3; ++k) {
+      if (!solve_component_[k]) (*U_)[c][k] = 0.0;
+    }
+  }
   U_->CorrectBoundary(time_, RelativeFlux());
 }
 
@@ -304,6 +335,7 @@ StepSummary PimpleSolver::Step(double dt) {
     U_->CorrectBoundary(time_, flux_rel);
     p_->CorrectBoundary(time_, flux_rel);
     AssembleMomentum(dt, flux_rel);
+    if (outer == 0 && schemes_.skew_correction) grad_U_old_ = grad_U_;
     UEqn_.Relax(std::span<const Vector3>(U_->values()), alpha_U);
     double res_U = 0.0;
     if (pimple_.momentum_predictor) {

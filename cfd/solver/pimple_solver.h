@@ -10,6 +10,7 @@
 // convective flux; continuity uses the absolute flux.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -145,7 +146,12 @@ class PimpleSolver {
   SparseSystem pressure_system_;
   std::unique_ptr<LinearSolver> momentum_solver_;
   std::unique_ptr<LinearSolver> pressure_solver_;
+  // Velocity components that are solved (false for the normal of the empty
+  // patches of a 2D mesh; that component stays zero).
+  std::array<bool, 3> solve_component_ = {true, true, true};
   std::vector<Matrix3> grad_U_;
+  std::vector<Matrix3> grad_U_old_;   // gradient of U at the start of the step (skew correction)
+  std::vector<Matrix3> grad_HbyA_;
   std::vector<Vector3> grad_p_;
   std::vector<Vector3> source_;
 };
