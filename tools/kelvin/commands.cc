@@ -2,9 +2,11 @@
 
 namespace kelvin::cli {
 
+Command AddRunCommand(CLI::App& app);
+
 std::vector<Command> AddCommands(CLI::App& app) {
   std::vector<Command> commands;
-  (void)app;
+  commands.push_back(AddRunCommand(app));
   return commands;
 }
 
