@@ -76,6 +76,7 @@ class BoundaryCondition {
 
  protected:
   void Resize(int n) {
+    if (static_cast<int>(vi_.size()) == n) return;
     vi_.assign(n, Traits<T>::Zero());
     vb_.assign(n, Traits<T>::Zero());
     gi_.assign(n, Traits<T>::Zero());

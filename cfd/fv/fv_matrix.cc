@@ -78,6 +78,8 @@ NonOrthGeometry::NonOrthGeometry(const Mesh& mesh) {
     const Vector3& d = mesh.deltas()[f];
     boundary_correction[f - ni] = n - d / std::max(n.dot(d), 0.05 * d.norm());
   }
+  for (const Vector3& k : correction) any_correction = any_correction || k.norm() > 1e-12;
+  for (const Vector3& k : boundary_correction) any_correction = any_correction || k.norm() > 1e-12;
 }
 
 template <typename T>

@@ -334,6 +334,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     WriteVtu(file, mesh, {u, p});
     pvd.Add(solver.time(), file);
   };
+  constexpr std::size_t kForceColumn = 8;
   auto write_history = [&]() {
     data::H5Writer w(c.output_directory / "history.h5");
     const std::size_t rows = history.size();
@@ -347,12 +348,15 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     w.WriteArray("residuals/U", column(2), {rows}, "1", "initial normalized momentum residual of the step");
     w.WriteArray("residuals/p", column(3), {rows}, "1", "initial normalized pressure residual of the step");
     w.WriteArray("continuity", column(4), {rows}, "1", "max_cells |sum F| / sum |F| after the correction");
+    w.WriteArray("wall_time", column(5), {rows}, "s", "wall-clock time since the start of the time loop");
+    w.WriteArray("outer_iterations", column(6), {rows}, "1", "PIMPLE outer iterations of the step");
+    w.WriteArray("pressure_iterations", column(7), {rows}, "1", "pressure CG iterations of the step");
     for (std::size_t k = 0; k < c.force_patches.size(); ++k) {
       std::vector<double> fp(rows * 3), fv(rows * 3);
       for (std::size_t r = 0; r < rows; ++r) {
         for (int d = 0; d < 3; ++d) {
-          fp[r * 3 + d] = history[r][5 + 6 * k + d];
-          fv[r * 3 + d] = history[r][5 + 6 * k + 3 + d];
+          fp[r * 3 + d] = history[r][kForceColumn + 6 * k + d];
+          fv[r * 3 + d] = history[r][kForceColumn + 6 * k + 3 + d];
         }
       }
       w.WriteArray("forces/" + c.force_patches[k] + "/pressure", fp, {rows, 3}, "N", "pressure force on the patch");
@@ -380,7 +384,10 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
           summary.last_checkpoint.empty() ? "none" : summary.last_checkpoint.string());
       break;
     }
-    std::vector<double> row = {s.time, s.courant_max, s.initial_residual_U, s.initial_residual_p, s.continuity_error};
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::vector<double> row = {s.time, s.courant_max, s.initial_residual_U, s.initial_residual_p, s.continuity_error,
+                               wall, static_cast<double>(s.outer_iterations),
+                               static_cast<double>(s.pressure_iterations)};
     for (const std::string& name : c.force_patches) {
       const auto [fp, fv] = PatchForce(solver, mesh.FindPatch(name), c.rho, nu);
       for (int d = 0; d < 3; ++d) row.push_back(fp[d]);
@@ -388,8 +395,11 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     }
     history.push_back(std::move(row));
     const bool last = i + 1 == total_steps;
-    if (last || (c.vtu_interval > 0 && solver.step() % c.vtu_interval == 0)) write_fields();
-    if (last || (c.checkpoint_interval > 0 && solver.step() % c.checkpoint_interval == 0)) {
+    if ((last && c.vtu_interval >= 0) || (c.vtu_interval > 0 && solver.step() % c.vtu_interval == 0)) {
+      write_fields();
+    }
+    if ((last && c.checkpoint_interval >= 0) ||
+        (c.checkpoint_interval > 0 && solver.step() % c.checkpoint_interval == 0)) {
       summary.last_checkpoint = c.output_directory / "checkpoint.h5";
       WriteCheckpoint(summary.last_checkpoint, solver);
       write_history();

@@ -43,8 +43,8 @@ struct Case {
   double end_time = 0.0;
   double rho = 1000.0;
   std::filesystem::path output_directory;
-  int vtu_interval = 0;         // steps, 0 = only the last
-  int checkpoint_interval = 0;  // steps, 0 = only the last
+  int vtu_interval = 0;         // steps; 0 = only the last step, < 0 = never
+  int checkpoint_interval = 0;  // steps; 0 = only the last step, < 0 = never
   std::vector<std::string> force_patches;
 };
 

@@ -60,6 +60,8 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
       }
     }
   }
+  // The corrections vanish identically on orthogonal meshes: skip their work.
+  non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;
   momentum_solver_ = LinearSolver::Create(pimple_.momentum_solver);
   pressure_solver_ = LinearSolver::Create(pimple_.pressure_solver);
 }
@@ -69,10 +71,10 @@ void PimpleSolver::SetMeshFlux(std::vector<double> mesh_flux) {
   mesh_flux_ = std::move(mesh_flux);
 }
 
-std::vector<double> PimpleSolver::RelativeFlux() const {
-  std::vector<double> rel(phi_);
-  for (std::size_t f = 0; f < rel.size(); ++f) rel[f] -= mesh_flux_[f];
-  return rel;
+std::span<const double> PimpleSolver::RelativeFlux() {
+  flux_rel_.resize(phi_.size());
+  for (std::size_t f = 0; f < phi_.size(); ++f) flux_rel_[f] = phi_[f] - mesh_flux_[f];
+  return flux_rel_;
 }
 
 void PimpleSolver::Initialize() {
@@ -95,7 +97,7 @@ void PimpleSolver::AssembleMomentum(double dt, std::span<const double> flux_rel)
   AddDdt(UEqn_, *U_, dt, schemes_.time);
   grad_.Compute(std::span<const Vector3>(U_->values()), std::span<const Vector3>(U_->boundary()), grad_U_);
   AddConvection(UEqn_, *U_, flux_rel, schemes_.convection, grad_U_);
-  AddLaplacian(UEqn_, *U_, physics_.nu, non_orth_, schemes_.non_orthogonal_correction ? &grad_U_ : nullptr);
+  AddLaplacian(UEqn_, *U_, physics_.nu, non_orth_, non_orth_correction_ ? &grad_U_ : nullptr);
   if (physics_.source) {
     source_.resize(mesh_.n_cells());
     for (int c = 0; c < mesh_.n_cells(); ++c) source_[c] = physics_.source(mesh_.cell_centres()[c], time_);
@@ -204,7 +206,7 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
     const bool last_non_orth = non_orth == pimple_.n_non_orthogonal;
     std::fill(diag.begin(), diag.end(), 0.0);
     for (int c = 0; c < nc; ++c) rhs[c] = 0.0;
-    if (schemes_.non_orthogonal_correction) {
+    if (non_orth_correction_) {
       grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
     }
     for (int f = 0; f < ni; ++f) {
@@ -213,7 +215,7 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
       diag[P] += a;
       diag[N] += a;
       off[f] = -a;
-      if (schemes_.non_orthogonal_correction) {
+      if (non_orth_correction_) {
         const Vector3 g = w[f] * grad_p_[P] + (1.0 - w[f]) * grad_p_[N];
         face_corr[f] = rAUf[f] * mag[f] * g.dot(non_orth_.correction[f]);
       }
@@ -331,7 +333,7 @@ StepSummary PimpleSolver::Step(double dt) {
     const double alpha_p = final_outer ? pimple_.relax_p_final : pimple_.relax_p;
     const std::vector<Vector3> U_prev = U_->values();
     const std::vector<double> phi_prev = phi_;
-    const std::vector<double> flux_rel = RelativeFlux();
+    const std::span<const double> flux_rel = RelativeFlux();
     U_->CorrectBoundary(time_, flux_rel);
     p_->CorrectBoundary(time_, flux_rel);
     AssembleMomentum(dt, flux_rel);

@@ -122,7 +122,8 @@ class PimpleSolver {
   void PressureCorrector(double dt, bool final_corrector, double alpha_U, double alpha_p,
                          const std::vector<Vector3>& U_prev, const std::vector<double>& phi_prev,
                          StepSummary& summary, bool first_pressure_solve);
-  std::vector<double> RelativeFlux() const;
+  // F - F_mesh on every face (refreshed on each call).
+  std::span<const double> RelativeFlux();
   double ContinuityError(double* global) const;
 
   const Mesh& mesh_;
@@ -134,6 +135,8 @@ class PimpleSolver {
   std::vector<double> phi_;
   std::vector<std::vector<double>> phi_old_;
   std::vector<double> mesh_flux_;
+  std::vector<double> flux_rel_;
+  bool non_orth_correction_ = true;
   double time_ = 0.0;
   int step_ = 0;
   double last_dt_ = 0.0;
