@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <ctime>
 #include <cmath>
 
 #include "cfd/io/checkpoint.h"
@@ -84,7 +85,7 @@ LinearSolverOptions LoadSolver(const ConfigNode& n, LinearSolverOptions o, bool 
   if (pressure) {
     n.ExpectKeys({"solver", "relative_tolerance", "absolute_tolerance", "max_iterations",
                   "final_relative_tolerance", "strong_threshold", "aggressive_levels", "interp_max_elements",
-                  "rebuild_growth"});
+                  "rebuild_growth", "rebuild_each_step"});
   } else {
     n.ExpectKeys({"solver", "relative_tolerance", "absolute_tolerance", "max_iterations"});
   }
@@ -99,6 +100,7 @@ LinearSolverOptions LoadSolver(const ConfigNode& n, LinearSolverOptions o, bool 
   o.amg.aggressive_levels = n.Get<int>("aggressive_levels", o.amg.aggressive_levels);
   o.amg.interp_max_elements = n.Get<int>("interp_max_elements", o.amg.interp_max_elements);
   o.amg.rebuild_growth = n.Get<double>("rebuild_growth", o.amg.rebuild_growth);
+  o.amg.rebuild_each_step = n.Get<bool>("rebuild_each_step", o.amg.rebuild_each_step);
   try {
     o.Validate();
   } catch (const ConfigError& e) {
@@ -334,7 +336,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     WriteVtu(file, mesh, {u, p});
     pvd.Add(solver.time(), file);
   };
-  constexpr std::size_t kForceColumn = 8;
+  constexpr std::size_t kForceColumn = 9;
   auto write_history = [&]() {
     data::H5Writer w(c.output_directory / "history.h5");
     const std::size_t rows = history.size();
@@ -351,6 +353,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     w.WriteArray("wall_time", column(5), {rows}, "s", "wall-clock time since the start of the time loop");
     w.WriteArray("outer_iterations", column(6), {rows}, "1", "PIMPLE outer iterations of the step");
     w.WriteArray("pressure_iterations", column(7), {rows}, "1", "pressure CG iterations of the step");
+    w.WriteArray("cpu_time", column(8), {rows}, "s", "process CPU time since the start of the time loop");
     for (std::size_t k = 0; k < c.force_patches.size(); ++k) {
       std::vector<double> fp(rows * 3), fv(rows * 3);
       for (std::size_t r = 0; r < rows; ++r) {
@@ -371,6 +374,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   po.enabled = options.progress;
   Progress progress(std::max(total_steps, 1), po);
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   for (int i = 0; i < total_steps; ++i) {
     const StepSummary s = solver.Step(c.dt);
     summary.outer_iterations += s.outer_iterations;
@@ -385,9 +389,10 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       break;
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     std::vector<double> row = {s.time, s.courant_max, s.initial_residual_U, s.initial_residual_p, s.continuity_error,
                                wall, static_cast<double>(s.outer_iterations),
-                               static_cast<double>(s.pressure_iterations)};
+                               static_cast<double>(s.pressure_iterations), cpu};
     for (const std::string& name : c.force_patches) {
       const auto [fp, fv] = PatchForce(solver, mesh.FindPatch(name), c.rho, nu);
       for (int d = 0; d < 3; ++d) row.push_back(fp[d]);

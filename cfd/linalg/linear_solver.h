@@ -21,6 +21,10 @@ struct AmgOptions {
   // after the last setup by this factor (the solver also rebuilds at the
   // first solve of every time step; see LinearSolver::RequestSetup()).
   double rebuild_growth = 1.2;
+  // Also rebuild at the first pressure solve of every time step (needed for
+  // bit-identical restarts; false keeps a hierarchy across steps until the
+  // iteration count grows).
+  bool rebuild_each_step = true;
   void Validate() const;
 };
 

@@ -44,3 +44,12 @@ void SparseSystem::Fill(std::span<const double> diag, std::span<const double> up
 }
 
 }  // namespace kelvin::cfd
+
+namespace kelvin::cfd {
+
+void SparseSystem::FillDiagonal(std::span<const double> diag) {
+  double* v = a_.valuePtr();
+  for (std::size_t c = 0; c < diag.size(); ++c) v[diag_pos_[c]] = diag[c];
+}
+
+}  // namespace kelvin::cfd

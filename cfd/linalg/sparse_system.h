@@ -18,6 +18,8 @@ class SparseSystem {
   explicit SparseSystem(const Mesh& mesh);
   // Overwrites the values: A(P,P) = diag, A(P,N) = upper, A(N,P) = lower.
   void Fill(std::span<const double> diag, std::span<const double> upper, std::span<const double> lower);
+  // Overwrites the diagonal only.
+  void FillDiagonal(std::span<const double> diag);
   const CsrMatrix& matrix() const { return a_; }
   CsrMatrix& matrix() { return a_; }
   int rows() const { return static_cast<int>(a_.rows()); }

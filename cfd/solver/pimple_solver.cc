@@ -109,6 +109,7 @@ double PimpleSolver::SolveMomentum(const std::vector<Vector3>& grad_p, StepSumma
   std::vector<double> diag_k, source_k, x(mesh_.n_cells());
   const auto vol = mesh_.cell_volumes();
   double worst = 0.0;
+  bool filled_off_diagonal = false;
   for (int k = 0; k < 3; ++k) {
     if (!solve_component_[k]) {
       for (int c = 0; c < mesh_.n_cells(); ++c) (*U_)[c][k] = 0.0;
@@ -119,7 +120,12 @@ double PimpleSolver::SolveMomentum(const std::vector<Vector3>& grad_p, StepSumma
       source_k[c] -= grad_p[c][k] * vol[c];
       x[c] = (*U_)[c][k];
     }
-    momentum_system_.Fill(diag_k, UEqn_.upper, UEqn_.lower);
+    if (!filled_off_diagonal) {
+      momentum_system_.Fill(diag_k, UEqn_.upper, UEqn_.lower);
+      filled_off_diagonal = true;
+    } else {
+      momentum_system_.FillDiagonal(diag_k);
+    }
     const SolverSummary s = momentum_solver_->Solve(momentum_system_.matrix(), source_k, x);
     summary.momentum_iterations += s.iterations;
     worst = std::max(worst, s.initial_residual);
@@ -324,7 +330,7 @@ StepSummary PimpleSolver::Step(double dt) {
   summary.step = step_;
   summary.time = time_;
   // Fresh AMG hierarchy each time step (and when the iterations grow).
-  pressure_solver_->RequestSetup();
+  if (pimple_.pressure_solver.amg.rebuild_each_step) pressure_solver_->RequestSetup();
 
   bool converged = false;
   for (int outer = 0; outer < pimple_.n_outer; ++outer) {
