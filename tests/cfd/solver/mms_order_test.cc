@@ -77,7 +77,10 @@ MmsResult SolveMms(int n, double perturbation, bool polyhedral, GradientScheme g
   pimple.pressure_solver.relative_tolerance = 1e-8;
   pimple.pressure_final_relative_tolerance = 1e-10;
   PimpleSolver solver(mesh, physics, schemes, pimple, std::move(U), std::move(p));
-  const double dt = 1.0 / (polyhedral ? 2 * n : n);  // Courant number about 2
+  // Courant number about 2 on the hex meshes, 1 on the polyhedral ones (the
+  // lagged non-orthogonal correction is unstable there at Courant 2). The
+  // steady state does not depend on dt (transient-consistent Rhie-Chow).
+  const double dt = polyhedral ? 0.25 / n : 1.0 / n;
   double change = 1.0;
   int steps = 0;
   while (change > 1e-10 && steps < 3000) {
