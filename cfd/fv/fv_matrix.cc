@@ -80,6 +80,11 @@ NonOrthGeometry::NonOrthGeometry(const Mesh& mesh) {
   }
   for (const Vector3& k : correction) any_correction = any_correction || k.norm() > 1e-12;
   for (const Vector3& k : boundary_correction) any_correction = any_correction || k.norm() > 1e-12;
+  if (!any_correction) {
+    // Orthogonal mesh: the vectors are all zero and never read.
+    correction = std::vector<Vector3>();
+    boundary_correction = std::vector<Vector3>();
+  }
 }
 
 template <typename T>
@@ -182,6 +187,7 @@ void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const
   const auto neighbour = mesh.neighbour();
   const auto mag = mesh.face_area_magnitudes();
   const auto w = mesh.weights();
+  if (!geo.any_correction) grad = nullptr;
   for (int f = 0; f < ni; ++f) {
     const double a = gamma * mag[f] * geo.delta_coeffs[f];
     m.diag[owner[f]] += a;

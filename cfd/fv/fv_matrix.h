@@ -88,7 +88,8 @@ struct NonOrthGeometry {
   // Boundary faces: n - d_b / (n . d_b) with d_b = x_f - x_P, so that
   // snGrad = dc (phi_b - phi_P) + k_b . grad(phi)_P on skewed wall cells.
   std::vector<Vector3> boundary_correction;
-  // False when every correction vector is zero (orthogonal mesh).
+  // False when every correction vector is zero (orthogonal mesh); the two
+  // vectors above are then released and must not be read.
   bool any_correction = false;
 };
 

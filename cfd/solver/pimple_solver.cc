@@ -42,8 +42,7 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
       grad_(mesh, schemes.gradient),
       non_orth_(mesh),
       UEqn_(mesh),
-      momentum_system_(mesh),
-      pressure_system_(mesh) {
+      system_(mesh) {
   physics_.Validate();
   schemes_.Validate();
   pimple_.Validate();
@@ -121,12 +120,12 @@ double PimpleSolver::SolveMomentum(const std::vector<Vector3>& grad_p, StepSumma
       x[c] = (*U_)[c][k];
     }
     if (!filled_off_diagonal) {
-      momentum_system_.Fill(diag_k, UEqn_.upper, UEqn_.lower);
+      system_.Fill(diag_k, UEqn_.upper, UEqn_.lower);
       filled_off_diagonal = true;
     } else {
-      momentum_system_.FillDiagonal(diag_k);
+      system_.FillDiagonal(diag_k);
     }
-    const SolverSummary s = momentum_solver_->Solve(momentum_system_.matrix(), source_k, x);
+    const SolverSummary s = momentum_solver_->Solve(system_.matrix(), source_k, x);
     summary.momentum_iterations += s.iterations;
     worst = std::max(worst, s.initial_residual);
     if (!std::isfinite(s.initial_residual)) worst = s.initial_residual;
@@ -245,11 +244,11 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
       rhs[r] += diag[r] * pimple_.p_ref_value;
       diag[r] += diag[r];
     }
-    pressure_system_.Fill(diag, off, off);
+    system_.Fill(diag, off, off);
     const bool final_solve = final_corrector && last_non_orth;
     pressure_solver_->SetRelativeTolerance(final_solve ? pimple_.pressure_final_relative_tolerance
                                                        : pimple_.pressure_solver.relative_tolerance);
-    const SolverSummary s = pressure_solver_->Solve(pressure_system_.matrix(), rhs, p_->values());
+    const SolverSummary s = pressure_solver_->Solve(system_.matrix(), rhs, p_->values());
     summary.pressure_iterations += s.iterations;
     if (first_pressure_solve && non_orth == 0) summary.initial_residual_p = s.initial_residual;
     if (!std::isfinite(s.final_relative_residual)) summary.finite = false;

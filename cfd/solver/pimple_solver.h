@@ -145,8 +145,9 @@ class PimpleSolver {
   Gradient grad_;
   NonOrthGeometry non_orth_;
   FvMatrix<Vector3> UEqn_;
-  SparseSystem momentum_system_;
-  SparseSystem pressure_system_;
+  // One matrix with the mesh sparsity, refilled for each momentum component
+  // and for the pressure (the AMG solver keeps its own copy).
+  SparseSystem system_;
   std::unique_ptr<LinearSolver> momentum_solver_;
   std::unique_ptr<LinearSolver> pressure_solver_;
   // Velocity components that are solved (false for the normal of the empty
