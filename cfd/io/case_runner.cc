@@ -1,6 +1,7 @@
 #include "cfd/io/case_runner.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <ctime>
@@ -318,6 +319,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   if (!options.output_override.empty()) c.output_directory = options.output_override;
   PimpleSolver& solver = *c.solver;
   const Mesh& mesh = *c.mesh;
+  spdlog::info("mesh quality:\n{}", mesh.Quality().Report());
   const double nu = root["physics"].GetPositive("nu");
   fs::create_directories(c.output_directory);
   RunSummary summary;

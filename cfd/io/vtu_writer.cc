@@ -31,7 +31,7 @@ void WriteVtu(const std::filesystem::path& path, const Mesh& mesh, const std::ve
     long long n_face_entries = 1;
     for (int k = off[c]; k < off[c + 1]; ++k) {
       const int f = cf[k];
-      const auto& fp = mesh.faces()[f];
+      const std::span<const int> fp = mesh.face(f);
       cell_faces += fmt::format(" {}", fp.size());
       const bool flip = mesh.owner()[f] != c;
       for (std::size_t i = 0; i < fp.size(); ++i) {

@@ -61,6 +61,7 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
   }
   // The corrections vanish identically on orthogonal meshes: skip their work.
   non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;
+  if (schemes_.skew_correction) skew_ = mesh.SkewVectors();
   momentum_solver_ = LinearSolver::Create(pimple_.momentum_solver);
   pressure_solver_ = LinearSolver::Create(pimple_.pressure_solver);
 }
@@ -170,7 +171,7 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
   if (skew) {
     grad_.Compute(std::span<const Vector3>(HbyA), std::span<const Vector3>(HbyA_boundary), grad_HbyA_);
   }
-  const auto skew_vec = mesh_.skew_vectors();
+  const std::vector<Vector3>& skew_vec = skew_;
   // Face interpolation, skew-corrected with the gradient g when asked.
   auto interp = [&](const std::vector<Vector3>& v, const std::vector<Matrix3>& g, int f, int P, int N) {
     Vector3 out = w[f] * v[P] + (1.0 - w[f]) * v[N];

@@ -156,6 +156,7 @@ class PimpleSolver {
   std::vector<Matrix3> grad_U_;
   std::vector<Matrix3> grad_U_old_;   // gradient of U at the start of the step (skew correction)
   std::vector<Matrix3> grad_HbyA_;
+  std::vector<Vector3> skew_;  // internal faces, only with skew correction
   std::vector<Vector3> grad_p_;
   std::vector<Vector3> source_;
 };
