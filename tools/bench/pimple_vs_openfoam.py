@@ -208,7 +208,8 @@ Laplacian. Tolerances: momentum 1e-6; pressure 1e-2 relative in the intermediate
 Pressure solvers: kelvin CG + hypre BoomerAMG (HMIS, ext+i Pmax 4, aggressive level 1, l1-GS 13/14, fresh setup each
 step); pimpleFoam GAMG (its usual choice; PCG + DIC is slower there). Momentum: kelvin BiCGStab + Jacobi,
 pimpleFoam symmetric Gauss-Seidel. OpenFOAM {foam_version.group(1) if foam_version else '(version unknown)'}.
-The first time step is excluded from the per-iteration times.
+The first time step is excluded from the per-iteration times. pimpleFoam also evaluates the explicit
+`div(nuEff*dev2(T(grad(U))))` term, which kelvin omits (it vanishes for constant nu and a solenoidal U).
 
 | | pimpleFoam | kelvin (AMG setup every step) | kelvin (AMG setup reused) |
 | --- | --- | --- | --- |
