@@ -163,9 +163,14 @@ SolverSummary HypreAmgSolver::Solve(const CsrMatrix& a, std::span<const double> 
   summary.iterations = iterations;
   summary.final_relative_residual = rel;
   summary.converged = iterations < options_.max_iterations && std::isfinite(rel);
-  if (summary.setup) {
-    reference_iterations_ = std::max(1, static_cast<int>(iterations));
-  } else if (iterations > options_.amg.rebuild_growth * reference_iterations_) {
+  // Growth test against the count of the first solve with the same
+  // tolerance since the last setup (intermediate and final correctors use
+  // different tolerances, so their counts are not comparable).
+  if (summary.setup) reference_iterations_.clear();
+  const auto it = reference_iterations_.find(options_.relative_tolerance);
+  if (it == reference_iterations_.end()) {
+    reference_iterations_[options_.relative_tolerance] = std::max(1, static_cast<int>(iterations));
+  } else if (iterations > options_.amg.rebuild_growth * it->second) {
     need_setup_ = true;
   }
   return summary;

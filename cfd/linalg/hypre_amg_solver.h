@@ -5,6 +5,8 @@
 // row partition (ilower..iupper) is where a domain decomposition plugs in.
 #pragma once
 
+#include <map>
+
 #include "cfd/linalg/linear_solver.h"
 
 namespace kelvin::cfd {
@@ -32,7 +34,7 @@ class HypreAmgSolver : public LinearSolver {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   bool need_setup_ = true;
-  int reference_iterations_ = 0;
+  std::map<double, int> reference_iterations_;  // per relative tolerance
   int setups_ = 0;
 };
 
