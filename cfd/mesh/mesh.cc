@@ -29,11 +29,20 @@ std::string PatchKindName(PatchKind kind) {
 Mesh::Mesh(std::vector<Vector3> points, std::vector<std::vector<int>> faces, std::vector<int> owner,
            std::vector<int> neighbour, std::vector<Patch> patches, std::string source)
     : points_(std::move(points)),
-      faces_(std::move(faces)),
       owner_(std::move(owner)),
       neighbour_(std::move(neighbour)),
       patches_(std::move(patches)),
       source_(std::move(source)) {
+  // Compact face storage.
+  face_offsets_.assign(faces.size() + 1, 0);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    face_offsets_[f + 1] = face_offsets_[f] + static_cast<int>(faces[f].size());
+  }
+  face_points_.reserve(face_offsets_.back());
+  for (auto& f : faces) {
+    face_points_.insert(face_points_.end(), f.begin(), f.end());
+    std::vector<int>().swap(f);
+  }
   n_cells_ = 0;
   for (int c : owner_) n_cells_ = std::max(n_cells_, c + 1);
   for (int c : neighbour_) n_cells_ = std::max(n_cells_, c + 1);
@@ -52,20 +61,20 @@ int Mesh::FindPatch(const std::string& name) const {
 void Mesh::CheckTopology() const {
   const int nf = n_faces();
   const int np = n_points();
-  if (static_cast<int>(faces_.size()) != nf) {
+  if (static_cast<int>(face_offsets_.size()) - 1 != nf) {
     throw DataFileError(fmt::format("{}: owner has {} entries but there are {} faces; expected one owner per face",
-                                    source_, nf, faces_.size()));
+                                    source_, nf, face_offsets_.size() - 1));
   }
   if (n_internal_faces() > nf) {
     throw DataFileError(fmt::format("{}: neighbour has {} entries but there are only {} faces", source_,
                                     n_internal_faces(), nf));
   }
   for (int f = 0; f < nf; ++f) {
-    if (faces_[f].size() < 3) {
+    if (face(f).size() < 3) {
       throw DataFileError(
-          fmt::format("{}: face {} has {} points; expected at least 3", source_, f, faces_[f].size()));
+          fmt::format("{}: face {} has {} points; expected at least 3", source_, f, face(f).size()));
     }
-    for (int p : faces_[f]) {
+    for (int p : face(f)) {
       if (p < 0 || p >= np) {
         throw DataFileError(fmt::format("{}: face {} refers to point {}; expected an index in [0, {})", source_, f,
                                         p, np));
@@ -124,7 +133,7 @@ void Mesh::ComputeGeometry() {
   face_mag_.assign(nf, 0.0);
   // Faces: triangles fanned around the point average (as OpenFOAM does).
   for (int f = 0; f < nf; ++f) {
-    const auto& fp = faces_[f];
+    const std::span<const int> fp = face(f);
     const std::size_t n = fp.size();
     if (n == 3) {
       const Vector3& a = points_[fp[0]];
@@ -189,10 +198,9 @@ void Mesh::ComputeGeometry() {
     cell_centres_[c] /= cell_volumes_[c];
     cell_volumes_[c] /= 3.0;
   }
-  // Interpolation weights, deltas and skewness vectors.
+  // Interpolation weights and deltas.
   weights_.assign(nf, 1.0);
   deltas_.assign(nf, Vector3::Zero());
-  skew_.assign(nf, Vector3::Zero());
   for (int f = 0; f < nf; ++f) {
     const Vector3& xp = cell_centres_[owner_[f]];
     if (f < n_internal_faces()) {
@@ -201,12 +209,20 @@ void Mesh::ComputeGeometry() {
       const double d_nei = std::abs(face_areas_[f].dot(xn - face_centres_[f]));
       weights_[f] = d_nei / (d_own + d_nei);
       deltas_[f] = xn - xp;
-      const double t = (face_centres_[f] - xp).dot(face_areas_[f]) / deltas_[f].dot(face_areas_[f]);
-      skew_[f] = face_centres_[f] - (xp + t * deltas_[f]);
     } else {
       deltas_[f] = face_centres_[f] - xp;
     }
   }
+}
+
+std::vector<Vector3> Mesh::SkewVectors() const {
+  std::vector<Vector3> skew(n_internal_faces());
+  for (int f = 0; f < n_internal_faces(); ++f) {
+    const Vector3& xp = cell_centres_[owner_[f]];
+    const double t = (face_centres_[f] - xp).dot(face_areas_[f]) / deltas_[f].dot(face_areas_[f]);
+    skew[f] = face_centres_[f] - (xp + t * deltas_[f]);
+  }
+  return skew;
 }
 
 double Mesh::total_volume() const { return std::accumulate(cell_volumes_.begin(), cell_volumes_.end(), 0.0); }
@@ -221,12 +237,13 @@ MeshQuality Mesh::Quality() const {
   q.min_volume = *std::min_element(cell_volumes_.begin(), cell_volumes_.end());
   q.max_volume = *std::max_element(cell_volumes_.begin(), cell_volumes_.end());
   double sum_angle = 0.0;
+  const std::vector<Vector3> skew = SkewVectors();
   for (int f = 0; f < n_internal_faces(); ++f) {
     const double c = deltas_[f].dot(face_areas_[f]) / (deltas_[f].norm() * face_mag_[f]);
     const double angle = std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
     q.max_non_orthogonality = std::max(q.max_non_orthogonality, angle);
     sum_angle += angle;
-    q.max_skewness = std::max(q.max_skewness, skew_[f].norm() / deltas_[f].norm());
+    q.max_skewness = std::max(q.max_skewness, skew[f].norm() / deltas_[f].norm());
   }
   q.mean_non_orthogonality = n_internal_faces() > 0 ? sum_angle / n_internal_faces() : 0.0;
   for (int c = 0; c < n_cells_; ++c) {
@@ -305,7 +322,7 @@ std::pair<int, int> Mesh::RenumberCells() {
     neighbour_[f] = new_index[neighbour_[f]];
     if (owner_[f] > neighbour_[f]) {
       std::swap(owner_[f], neighbour_[f]);
-      std::reverse(faces_[f].begin(), faces_[f].end());
+      std::reverse(face_points_.begin() + face_offsets_[f], face_points_.begin() + face_offsets_[f + 1]);
     }
   }
   SortInternalFaces();
@@ -321,15 +338,24 @@ void Mesh::SortInternalFaces() {
   std::sort(perm.begin(), perm.end(), [&](int a, int b) {
     return owner_[a] != owner_[b] ? owner_[a] < owner_[b] : neighbour_[a] < neighbour_[b];
   });
-  std::vector<std::vector<int>> faces(ni);
+  std::vector<int> offsets(face_offsets_.size(), 0), points;
+  points.reserve(face_points_.size());
   std::vector<int> own(ni), nei(ni);
   for (int i = 0; i < ni; ++i) {
-    faces[i] = std::move(faces_[perm[i]]);
+    const std::span<const int> fp = face(perm[i]);
+    points.insert(points.end(), fp.begin(), fp.end());
+    offsets[i + 1] = static_cast<int>(points.size());
     own[i] = owner_[perm[i]];
     nei[i] = neighbour_[perm[i]];
   }
+  for (int f = ni; f < n_faces(); ++f) {
+    const std::span<const int> fp = face(f);
+    points.insert(points.end(), fp.begin(), fp.end());
+    offsets[f + 1] = static_cast<int>(points.size());
+  }
+  face_offsets_ = std::move(offsets);
+  face_points_ = std::move(points);
   for (int i = 0; i < ni; ++i) {
-    faces_[i] = std::move(faces[i]);
     owner_[i] = own[i];
     neighbour_[i] = nei[i];
   }

@@ -62,7 +62,37 @@ class Mesh {
   int n_points() const { return static_cast<int>(points_.size()); }
 
   const std::vector<Vector3>& points() const { return points_; }
-  const std::vector<std::vector<int>>& faces() const { return faces_; }
+  // Point labels of face f.
+  std::span<const int> face(int f) const {
+    return {face_points_.data() + face_offsets_[f], face_points_.data() + face_offsets_[f + 1]};
+  }
+  // All faces, as a range of point-label spans (stored compactly, CSR).
+  class FaceRange {
+   public:
+    class Iterator {
+     public:
+      Iterator(const Mesh* mesh, int f) : mesh_(mesh), f_(f) {}
+      std::span<const int> operator*() const { return mesh_->face(f_); }
+      Iterator& operator++() {
+        ++f_;
+        return *this;
+      }
+      bool operator!=(const Iterator& o) const { return f_ != o.f_; }
+
+     private:
+      const Mesh* mesh_;
+      int f_;
+    };
+    explicit FaceRange(const Mesh* mesh) : mesh_(mesh) {}
+    Iterator begin() const { return {mesh_, 0}; }
+    Iterator end() const { return {mesh_, mesh_->n_faces()}; }
+    std::span<const int> operator[](int f) const { return mesh_->face(f); }
+    std::size_t size() const { return static_cast<std::size_t>(mesh_->n_faces()); }
+
+   private:
+    const Mesh* mesh_;
+  };
+  FaceRange faces() const { return FaceRange(this); }
   std::span<const int> owner() const { return owner_; }
   std::span<const int> neighbour() const { return neighbour_; }
   const std::vector<Patch>& patches() const { return patches_; }
@@ -82,9 +112,10 @@ class Mesh {
   std::span<const double> weights() const { return weights_; }
   // d = x_N - x_P on internal faces, x_f - x_P on boundary faces.
   std::span<const Vector3> deltas() const { return deltas_; }
-  // Skewness vector x_f - x_f' (x_f' is where the line P-N crosses the face
-  // plane); zero on boundary faces.
-  std::span<const Vector3> skew_vectors() const { return skew_; }
+  // Skewness vectors x_f - x_f' (x_f' is where the line P-N crosses the face
+  // plane) of the internal faces, computed on demand (not stored: most runs
+  // never need them).
+  std::vector<Vector3> SkewVectors() const;
   // Faces of each cell, CSR: cell_faces()[cell_face_offsets()[c] ...].
   std::span<const int> cell_face_offsets() const { return cell_face_offsets_; }
   std::span<const int> cell_faces() const { return cell_faces_; }
@@ -107,7 +138,8 @@ class Mesh {
   void BuildCellFaces();
 
   std::vector<Vector3> points_;
-  std::vector<std::vector<int>> faces_;
+  std::vector<int> face_offsets_;  // n_faces + 1
+  std::vector<int> face_points_;
   std::vector<int> owner_;
   std::vector<int> neighbour_;
   std::vector<Patch> patches_;
@@ -121,7 +153,6 @@ class Mesh {
   std::vector<double> face_mag_;
   std::vector<double> weights_;
   std::vector<Vector3> deltas_;
-  std::vector<Vector3> skew_;
   std::vector<int> cell_face_offsets_;
   std::vector<int> cell_faces_;
 };

@@ -20,6 +20,7 @@ Command AddHullCommand(CLI::App& app);
 Command AddCaptiveCommand(CLI::App& app);
 Command AddBridgeCommand(CLI::App& app);
 Command AddMeshCommand(CLI::App& app);
+Command AddRunCommand(CLI::App& app);
 Command AddIdentifyCommand(CLI::App& app);
 Command AddListenCommand(CLI::App& app);
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "cfd/mesh/box_mesh.h"
+#include "cfd/mesh/dual_mesh.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -88,6 +89,32 @@ TEST(BoxMesh, PolyhedralVariantHasSplitFaceCells) {
   EXPECT_NEAR(mesh.total_volume(), 1.0, 1e-13);
   EXPECT_LT(MaxCellOpenness(mesh), 1e-13);
   EXPECT_GT(mesh.Quality().max_skewness, 0.1);
+}
+
+TEST(DualMesh, PolygonalPrismsTileTheBox) {
+  DualMeshOptions opt;
+  opt.divisions = {6, 5, 3};
+  opt.max = Vector3(2.0, 1.0, 0.6);
+  opt.perturbation = 0.2;
+  const Mesh mesh = MakeDualMesh(opt);
+  EXPECT_EQ(mesh.n_cells(), 7 * 6 * 3);
+  EXPECT_NEAR(mesh.total_volume(), 1.2, 1e-13);
+  EXPECT_LT(MaxCellOpenness(mesh), 1e-13);
+  EXPECT_LT(mesh.Quality().boundary_openness, 1e-15);
+  int max_faces = 0;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    max_faces = std::max(max_faces, mesh.cell_face_offsets()[c + 1] - mesh.cell_face_offsets()[c]);
+  }
+  EXPECT_GE(max_faces, 10);  // 8 kinked sides + top + bottom around an 8-triangle vertex
+  // Patch areas: xmax is 1 x 0.6, zmax is 2 x 1.
+  auto patch_area = [&](const char* name) {
+    const Patch& p = mesh.patches()[mesh.FindPatch(name)];
+    Vector3 a = Vector3::Zero();
+    for (int f = p.start; f < p.start + p.size; ++f) a += mesh.face_areas()[f];
+    return a;
+  };
+  EXPECT_TRUE(patch_area("xmax").isApprox(Vector3(0.6, 0, 0)));
+  EXPECT_TRUE(patch_area("zmin").isApprox(Vector3(0, 0, -2.0)));
 }
 
 TEST(Mesh, RenumberingKeepsGeometryAndDoesNotWidenBandwidth) {

@@ -1,0 +1,245 @@
+#include "cfd/fv/fv_matrix.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kelvin::cfd {
+
+template <typename T>
+std::vector<double> FvMatrix<T>::A() const {
+  const Mesh& mesh = *mesh_;
+  std::vector<double> a(diag);
+  const int ni = mesh.n_internal_faces();
+  for (int f = ni; f < mesh.n_faces(); ++f) a[mesh.owner()[f]] += Traits<T>::CmptAv(internal_coeffs[f - ni]);
+  const auto vol = mesh.cell_volumes();
+  for (int c = 0; c < mesh.n_cells(); ++c) a[c] /= vol[c];
+  return a;
+}
+
+template <typename T>
+std::vector<T> FvMatrix<T>::H(std::span<const T> psi) const {
+  const Mesh& mesh = *mesh_;
+  const int ni = mesh.n_internal_faces();
+  const auto owner = mesh.owner();
+  const auto neighbour = mesh.neighbour();
+  std::vector<T> h(source);
+  for (int f = 0; f < ni; ++f) {
+    h[owner[f]] -= upper[f] * psi[neighbour[f]];
+    h[neighbour[f]] -= lower[f] * psi[owner[f]];
+  }
+  for (int f = ni; f < mesh.n_faces(); ++f) {
+    const int c = owner[f];
+    const T& ic = internal_coeffs[f - ni];
+    // Component part of the boundary diagonal that A() averaged away.
+    h[c] += Traits<T>::Mul(Traits<T>::CmptAv(ic) * Traits<T>::One() - ic, psi[c]);
+    h[c] += boundary_coeffs[f - ni];
+  }
+  const auto vol = mesh.cell_volumes();
+  for (int c = 0; c < mesh.n_cells(); ++c) h[c] /= vol[c];
+  return h;
+}
+
+template <typename T>
+void FvMatrix<T>::Relax(std::span<const T> psi, double alpha) {
+  if (alpha >= 1.0) return;
+  for (std::size_t c = 0; c < diag.size(); ++c) {
+    const double d = diag[c] / alpha;
+    source[c] += (d - diag[c]) * psi[c];
+    diag[c] = d;
+  }
+}
+
+template <typename T>
+void FvMatrix<T>::ComponentSystem(int k, std::vector<double>& diag_k, std::vector<double>& source_k) const {
+  const Mesh& mesh = *mesh_;
+  const int ni = mesh.n_internal_faces();
+  diag_k = diag;
+  source_k.resize(source.size());
+  for (std::size_t c = 0; c < source.size(); ++c) source_k[c] = Traits<T>::Component(source[c], k);
+  for (int f = ni; f < mesh.n_faces(); ++f) {
+    diag_k[mesh.owner()[f]] += Traits<T>::Component(internal_coeffs[f - ni], k);
+    source_k[mesh.owner()[f]] += Traits<T>::Component(boundary_coeffs[f - ni], k);
+  }
+}
+
+NonOrthGeometry::NonOrthGeometry(const Mesh& mesh) {
+  const int ni = mesh.n_internal_faces();
+  delta_coeffs.resize(ni);
+  correction.resize(ni);
+  for (int f = 0; f < ni; ++f) {
+    const Vector3 n = mesh.face_areas()[f] / mesh.face_area_magnitudes()[f];
+    const Vector3& d = mesh.deltas()[f];
+    delta_coeffs[f] = 1.0 / std::max(n.dot(d), 0.05 * d.norm());
+    correction[f] = n - d * delta_coeffs[f];
+  }
+  boundary_correction.resize(mesh.n_boundary_faces());
+  for (int f = ni; f < mesh.n_faces(); ++f) {
+    const Vector3 n = mesh.face_areas()[f] / mesh.face_area_magnitudes()[f];
+    const Vector3& d = mesh.deltas()[f];
+    boundary_correction[f - ni] = n - d / std::max(n.dot(d), 0.05 * d.norm());
+  }
+  for (const Vector3& k : correction) any_correction = any_correction || k.norm() > 1e-12;
+  for (const Vector3& k : boundary_correction) any_correction = any_correction || k.norm() > 1e-12;
+  if (!any_correction) {
+    // Orthogonal mesh: the vectors are all zero and never read.
+    correction = std::vector<Vector3>();
+    boundary_correction = std::vector<Vector3>();
+  }
+}
+
+template <typename T>
+void AddDdt(FvMatrix<T>& m, const CellField<T>& field, double dt, TimeScheme scheme) {
+  const auto vol = m.mesh().cell_volumes();
+  const bool backward = scheme == TimeScheme::kBackward && field.n_old() >= 2;
+  const auto& old0 = field.old(0);
+  for (int c = 0; c < m.mesh().n_cells(); ++c) {
+    const double r = vol[c] / dt;
+    if (backward) {
+      m.diag[c] += 1.5 * r;
+      m.source[c] += r * (2.0 * old0[c] - 0.5 * field.old(1)[c]);
+    } else {
+      m.diag[c] += r;
+      m.source[c] += r * old0[c];
+    }
+  }
+}
+
+namespace {
+
+inline double Dot(const Vector3& g, const Vector3& d) { return g.dot(d); }
+inline Vector3 Dot(const Matrix3& g, const Vector3& d) { return g * d; }
+
+inline double VanLeer(double r) { return (r + std::abs(r)) / (1.0 + std::abs(r)); }
+
+// Bounded face value, limited per component.
+inline double LimitedFace(double up, double down, double grad_dot_d, double frac) {
+  const double diff = down - up;
+  if (std::abs(diff) < 1e-300) return up;
+  const double r = 2.0 * grad_dot_d / diff - 1.0;
+  return up + VanLeer(r) * frac * diff;
+}
+inline Vector3 LimitedFace(const Vector3& up, const Vector3& down, const Vector3& grad_dot_d, double frac) {
+  Vector3 out;
+  for (int k = 0; k < 3; ++k) out[k] = LimitedFace(up[k], down[k], grad_dot_d[k], frac);
+  return out;
+}
+
+}  // namespace
+
+template <typename T>
+void AddConvection(FvMatrix<T>& m, const CellField<T>& field, std::span<const double> flux, ConvectionScheme scheme,
+                   const std::vector<GradType<T>>& grad) {
+  const Mesh& mesh = m.mesh();
+  const int ni = mesh.n_internal_faces();
+  const auto owner = mesh.owner();
+  const auto neighbour = mesh.neighbour();
+  const auto xf = mesh.face_centres();
+  const auto xc = mesh.cell_centres();
+  const auto w = mesh.weights();
+  const auto& phi = field.values();
+  for (int f = 0; f < ni; ++f) {
+    const double F = flux[f];
+    const int P = owner[f];
+    const int N = neighbour[f];
+    m.diag[P] += std::max(F, 0.0);
+    m.upper[f] += std::min(F, 0.0);
+    m.diag[N] += std::max(-F, 0.0);
+    m.lower[f] -= std::max(F, 0.0);
+    if (scheme == ConvectionScheme::kUpwind) continue;
+    const bool from_owner = F >= 0.0;
+    const int U = from_owner ? P : N;
+    const int D = from_owner ? N : P;
+    T face;
+    switch (scheme) {
+      case ConvectionScheme::kLinearUpwind:
+        face = phi[U] + Dot(grad[U], Vector3(xf[f] - xc[U]));
+        break;
+      case ConvectionScheme::kLimited: {
+        const double frac = from_owner ? 1.0 - w[f] : w[f];
+        face = LimitedFace(phi[U], phi[D], Dot(grad[U], Vector3(xc[D] - xc[U])), frac);
+        break;
+      }
+      case ConvectionScheme::kLinear:
+      default:
+        face = w[f] * phi[P] + (1.0 - w[f]) * phi[N];
+        break;
+    }
+    const T correction = F * (face - phi[U]);
+    m.source[P] -= correction;
+    m.source[N] += correction;
+  }
+  for (const Patch& patch : mesh.patches()) {
+    const auto& bc = field.bc(mesh.FindPatch(patch.name));
+    for (int i = 0; i < patch.size; ++i) {
+      const int f = patch.start + i;
+      m.internal_coeffs[f - ni] += flux[f] * bc.value_internal()[i];
+      m.boundary_coeffs[f - ni] -= flux[f] * bc.value_boundary()[i];
+    }
+  }
+}
+
+template <typename T>
+void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const NonOrthGeometry& geo,
+                  const std::vector<GradType<T>>* grad) {
+  const Mesh& mesh = m.mesh();
+  const int ni = mesh.n_internal_faces();
+  const auto owner = mesh.owner();
+  const auto neighbour = mesh.neighbour();
+  const auto mag = mesh.face_area_magnitudes();
+  const auto w = mesh.weights();
+  if (!geo.any_correction) grad = nullptr;
+  for (int f = 0; f < ni; ++f) {
+    const double a = gamma * mag[f] * geo.delta_coeffs[f];
+    m.diag[owner[f]] += a;
+    m.diag[neighbour[f]] += a;
+    m.upper[f] -= a;
+    m.lower[f] -= a;
+    if (grad) {
+      const GradType<T> g = w[f] * (*grad)[owner[f]] + (1.0 - w[f]) * (*grad)[neighbour[f]];
+      const T corr = gamma * mag[f] * Dot(g, geo.correction[f]);
+      m.source[owner[f]] += corr;
+      m.source[neighbour[f]] -= corr;
+    }
+  }
+  for (int p = 0; p < field.n_patches(); ++p) {
+    const Patch& patch = mesh.patches()[p];
+    const auto& bc = field.bc(p);
+    for (int i = 0; i < patch.size; ++i) {
+      const int f = patch.start + i;
+      m.internal_coeffs[f - ni] -= gamma * mag[f] * bc.gradient_internal()[i];
+      m.boundary_coeffs[f - ni] += gamma * mag[f] * bc.gradient_boundary()[i];
+      if (grad) {
+        // Skewed wall cell: the part of dc (phi_b - phi_P) along the face,
+        // weighted by how much the condition fixes the value (-gi / dc).
+        const double n_dot_d = mesh.face_areas()[f].dot(mesh.deltas()[f]) / mag[f];
+        const double dc = 1.0 / std::max(n_dot_d, 0.05 * mesh.deltas()[f].norm());
+        const T fraction = -bc.gradient_internal()[i] / dc;
+        const T tangential = Dot((*grad)[owner[f]], geo.boundary_correction[f - ni]);
+        m.source[owner[f]] += gamma * mag[f] * Traits<T>::Mul(fraction, tangential);
+      }
+    }
+  }
+}
+
+template <typename T>
+void AddSource(FvMatrix<T>& m, std::span<const T> per_volume) {
+  const auto vol = m.mesh().cell_volumes();
+  for (int c = 0; c < m.mesh().n_cells(); ++c) m.source[c] += vol[c] * per_volume[c];
+}
+
+template class FvMatrix<double>;
+template class FvMatrix<Vector3>;
+template void AddDdt(FvMatrix<double>&, const CellField<double>&, double, TimeScheme);
+template void AddDdt(FvMatrix<Vector3>&, const CellField<Vector3>&, double, TimeScheme);
+template void AddConvection(FvMatrix<double>&, const CellField<double>&, std::span<const double>, ConvectionScheme,
+                            const std::vector<Vector3>&);
+template void AddConvection(FvMatrix<Vector3>&, const CellField<Vector3>&, std::span<const double>,
+                            ConvectionScheme, const std::vector<Matrix3>&);
+template void AddLaplacian(FvMatrix<double>&, const CellField<double>&, double, const NonOrthGeometry&,
+                           const std::vector<Vector3>*);
+template void AddLaplacian(FvMatrix<Vector3>&, const CellField<Vector3>&, double, const NonOrthGeometry&,
+                           const std::vector<Matrix3>*);
+template void AddSource(FvMatrix<double>&, std::span<const double>);
+template void AddSource(FvMatrix<Vector3>&, std::span<const Vector3>);
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,28 @@
+// Discretization choices of a run (the `schemes` section of a case file).
+#pragma once
+
+#include "cfd/fv/gradient.h"
+
+namespace kelvin::cfd {
+
+enum class TimeScheme { kEuler, kBackward };
+// Convection: first-order upwind; linear-upwind (second order, unbounded);
+// limited (bounded second order: van Leer TVD limiter on the
+// gradient-based ratio); linear (central, unbounded).
+enum class ConvectionScheme { kUpwind, kLinearUpwind, kLimited, kLinear };
+
+struct SchemeOptions {
+  TimeScheme time = TimeScheme::kEuler;
+  GradientOptions gradient;
+  ConvectionScheme convection = ConvectionScheme::kLinearUpwind;
+  // Explicit non-orthogonal correction of the Laplacians (face gradient from
+  // the interpolated cell gradient).
+  bool non_orthogonal_correction = true;
+  // Skewness correction of the face interpolation in the Rhie-Chow flux
+  // (phi_f += grad(phi)_f . (x_f - x_f')): keeps second order on skewed and
+  // polyhedral meshes, at the cost of one more vector gradient per corrector.
+  bool skew_correction = false;
+  void Validate() const { gradient.Validate(); }
+};
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,428 @@
+#include "cfd/io/case_runner.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <ctime>
+#include <cmath>
+
+#include "cfd/io/checkpoint.h"
+#include "cfd/io/vtu_writer.h"
+#include "cfd/mesh/box_mesh.h"
+#include "cfd/mesh/poly_mesh_reader.h"
+#include "data/report/progress.h"
+#include "data/schema/errors.h"
+#include "data/schema/h5_file.h"
+
+namespace kelvin::cfd {
+namespace {
+
+namespace fs = std::filesystem;
+using data::ConfigNode;
+
+Vector3 GetVector(const ConfigNode& node, std::string_view key) {
+  const std::vector<double> v = node[key].As<std::vector<double>>();
+  if (v.size() != 3) node[key].Fail("a list of 3 numbers");
+  return Vector3(v[0], v[1], v[2]);
+}
+
+template <typename E>
+E GetEnum(const ConfigNode& node, std::string_view key, E fallback,
+          std::initializer_list<std::pair<const char*, E>> choices) {
+  if (!node.Has(key)) return fallback;
+  const std::string text = node.Get<std::string>(key);
+  std::string names;
+  for (const auto& [name, value] : choices) {
+    if (text == name) return value;
+    names += (names.empty() ? "" : ", ") + std::string(name);
+  }
+  node[key].Fail("one of " + names);
+}
+
+std::unique_ptr<Mesh> LoadMesh(const ConfigNode& m, const fs::path& case_dir) {
+  m.ExpectKeys({"box", "poly_mesh", "renumber"});
+  std::unique_ptr<Mesh> mesh;
+  if (m.Has("box") == m.Has("poly_mesh")) m.Fail("exactly one of 'box' or 'poly_mesh'");
+  if (m.Has("box")) {
+    const ConfigNode b = m["box"];
+    b.ExpectKeys({"min", "max", "cells", "grading", "empty", "perturbation", "polyhedral", "seed"});
+    BoxMeshOptions o;
+    o.min = b.Has("min") ? GetVector(b, "min") : o.min;
+    o.max = GetVector(b, "max");
+    const std::vector<double> cells = b["cells"].As<std::vector<double>>();
+    if (cells.size() != 3) b["cells"].Fail("a list of 3 integers");
+    for (int d = 0; d < 3; ++d) o.cells[d] = static_cast<int>(cells[d]);
+    if (b.Has("grading")) {
+      const std::vector<double> g = b["grading"].As<std::vector<double>>();
+      if (g.size() != 3) b["grading"].Fail("a list of 3 numbers");
+      for (int d = 0; d < 3; ++d) o.grading[d] = g[d];
+    }
+    o.perturbation = b.Get<double>("perturbation", 0.0);
+    o.polyhedral = b.Get<bool>("polyhedral", false);
+    o.seed = static_cast<unsigned>(b.Get<int>("seed", 1));
+    if (b.Has("empty")) {
+      const std::string axis = b.Get<std::string>("empty");
+      const int d = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
+      if (d < 0) b["empty"].Fail("x, y or z (the one-cell axis of a 2D case)");
+      o.kinds[2 * d] = o.kinds[2 * d + 1] = PatchKind::kEmpty;
+    }
+    try {
+      o.Validate();
+    } catch (const ConfigError& e) {
+      b.Fail(e.what());
+    }
+    mesh = std::make_unique<Mesh>(MakeBoxMesh(o));
+  } else {
+    fs::path dir = m.Get<std::string>("poly_mesh");
+    if (dir.is_relative()) dir = case_dir / dir;
+    mesh = std::make_unique<Mesh>(ReadPolyMesh(dir));
+  }
+  if (m.Get<bool>("renumber", true)) mesh->RenumberCells();
+  return mesh;
+}
+
+LinearSolverOptions LoadSolver(const ConfigNode& n, LinearSolverOptions o, bool pressure) {
+  if (pressure) {
+    n.ExpectKeys({"solver", "relative_tolerance", "absolute_tolerance", "max_iterations",
+                  "final_relative_tolerance", "strong_threshold", "aggressive_levels", "interp_max_elements",
+                  "rebuild_growth", "rebuild_each_step"});
+  } else {
+    n.ExpectKeys({"solver", "relative_tolerance", "absolute_tolerance", "max_iterations"});
+  }
+  o.type = GetEnum(n, "solver", o.type,
+                   {{"bicgstab", LinearSolverOptions::Type::kBiCgStabJacobi},
+                    {"cg", LinearSolverOptions::Type::kCgJacobi},
+                    {"pcg_amg", LinearSolverOptions::Type::kPcgAmg}});
+  o.relative_tolerance = n.Get<double>("relative_tolerance", o.relative_tolerance);
+  o.absolute_tolerance = n.Get<double>("absolute_tolerance", o.absolute_tolerance);
+  o.max_iterations = n.Get<int>("max_iterations", o.max_iterations);
+  o.amg.strong_threshold = n.Get<double>("strong_threshold", o.amg.strong_threshold);
+  o.amg.aggressive_levels = n.Get<int>("aggressive_levels", o.amg.aggressive_levels);
+  o.amg.interp_max_elements = n.Get<int>("interp_max_elements", o.amg.interp_max_elements);
+  o.amg.rebuild_growth = n.Get<double>("rebuild_growth", o.amg.rebuild_growth);
+  o.amg.rebuild_each_step = n.Get<bool>("rebuild_each_step", o.amg.rebuild_each_step);
+  try {
+    o.Validate();
+  } catch (const ConfigError& e) {
+    n.Fail(e.what());
+  }
+  return o;
+}
+
+std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n) {
+  const std::string type = n.Get<std::string>("type");
+  if (type == "fixedValue") {
+    n.ExpectKeys({"type", "value"});
+    return std::make_unique<FixedValue<Vector3>>(GetVector(n, "value"));
+  }
+  if (type == "noSlip") {
+    n.ExpectKeys({"type"});
+    return std::make_unique<FixedValue<Vector3>>(Vector3(0, 0, 0));
+  }
+  if (type == "movingWall") {
+    n.ExpectKeys({"type", "velocity", "angular_velocity", "centre"});
+    MovingWall::Motion m;
+    if (n.Has("velocity")) m.velocity = GetVector(n, "velocity");
+    if (n.Has("angular_velocity")) m.angular_velocity = GetVector(n, "angular_velocity");
+    if (n.Has("centre")) m.centre = GetVector(n, "centre");
+    return std::make_unique<MovingWall>([m](double) { return m; });
+  }
+  if (type == "zeroGradient") {
+    n.ExpectKeys({"type"});
+    return std::make_unique<ZeroGradient<Vector3>>();
+  }
+  if (type == "slip") {
+    n.ExpectKeys({"type"});
+    return std::make_unique<Slip>();
+  }
+  if (type == "inletOutlet") {
+    n.ExpectKeys({"type", "inflow"});
+    return std::make_unique<InletOutlet<Vector3>>(GetVector(n, "inflow"));
+  }
+  if (type == "empty") {
+    n.ExpectKeys({"type"});
+    return std::make_unique<Empty<Vector3>>();
+  }
+  n["type"].Fail("one of fixedValue, noSlip, movingWall, zeroGradient, slip, inletOutlet, empty");
+}
+
+std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n) {
+  const std::string type = n.Get<std::string>("type");
+  if (type == "fixedValue") {
+    n.ExpectKeys({"type", "value"});
+    return std::make_unique<FixedValue<double>>(n.Get<double>("value"));
+  }
+  if (type == "zeroGradient") {
+    n.ExpectKeys({"type"});
+    return std::make_unique<ZeroGradient<double>>();
+  }
+  if (type == "empty") {
+    n.ExpectKeys({"type"});
+    return std::make_unique<Empty<double>>();
+  }
+  if (type == "mixed") {
+    n.ExpectKeys({"type", "value", "gradient", "fraction"});
+    const double f = n.Get<double>("fraction");
+    if (!(f >= 0.0 && f <= 1.0)) n["fraction"].Fail("a value fraction in [0, 1]");
+    return std::make_unique<Mixed<double>>(n.Get<double>("value", 0.0), n.Get<double>("gradient", 0.0), f);
+  }
+  n["type"].Fail("one of fixedValue, zeroGradient, empty, mixed");
+}
+
+}  // namespace
+
+Case LoadCase(const ConfigNode& root, const fs::path& case_dir) {
+  root.ExpectKeys({"mesh", "physics", "schemes", "solution", "time", "boundary", "output"});
+  Case c;
+  c.mesh = LoadMesh(root["mesh"], case_dir);
+  const Mesh& mesh = *c.mesh;
+
+  const ConfigNode ph = root["physics"];
+  ph.ExpectKeys({"nu", "rho", "body_force"});
+  PhysicsOptions physics;
+  physics.nu = ph.GetPositive("nu");
+  c.rho = ph.Has("rho") ? ph.GetPositive("rho") : 1000.0;
+  if (ph.Has("body_force")) {
+    const Vector3 g = GetVector(ph, "body_force");
+    physics.source = [g](const Vector3&, double) { return g; };
+  }
+
+  SchemeOptions schemes;
+  if (root.Has("schemes")) {
+    const ConfigNode s = root["schemes"];
+    s.ExpectKeys({"time", "gradient", "limiter", "convection", "non_orthogonal_correction", "skew_correction"});
+    schemes.time = GetEnum(s, "time", schemes.time, {{"euler", TimeScheme::kEuler}, {"backward", TimeScheme::kBackward}});
+    schemes.gradient.scheme = GetEnum(s, "gradient", schemes.gradient.scheme,
+                                      {{"gauss", GradientScheme::kGaussLinear},
+                                       {"least_squares", GradientScheme::kLeastSquares}});
+    schemes.gradient.limiter = GetEnum(s, "limiter", schemes.gradient.limiter,
+                                       {{"none", GradientLimiter::kNone}, {"cell", GradientLimiter::kCellLimited}});
+    schemes.convection = GetEnum(s, "convection", schemes.convection,
+                                 {{"upwind", ConvectionScheme::kUpwind},
+                                  {"linear_upwind", ConvectionScheme::kLinearUpwind},
+                                  {"limited", ConvectionScheme::kLimited},
+                                  {"linear", ConvectionScheme::kLinear}});
+    schemes.non_orthogonal_correction = s.Get<bool>("non_orthogonal_correction", true);
+    schemes.skew_correction = s.Get<bool>("skew_correction", false);
+  }
+
+  PimpleOptions pimple;
+  if (root.Has("solution")) {
+    const ConfigNode s = root["solution"];
+    s.ExpectKeys({"n_outer", "n_correctors", "n_non_orthogonal", "momentum_predictor", "relax", "residual_control",
+                  "momentum", "pressure", "p_ref_cell", "p_ref_value"});
+    pimple.n_outer = s.Get<int>("n_outer", pimple.n_outer);
+    pimple.n_correctors = s.Get<int>("n_correctors", pimple.n_correctors);
+    pimple.n_non_orthogonal = s.Get<int>("n_non_orthogonal", pimple.n_non_orthogonal);
+    pimple.momentum_predictor = s.Get<bool>("momentum_predictor", true);
+    if (s.Has("relax")) {
+      const ConfigNode r = s["relax"];
+      r.ExpectKeys({"U", "p", "U_final", "p_final"});
+      pimple.relax_U = r.Get<double>("U", 1.0);
+      pimple.relax_p = r.Get<double>("p", 1.0);
+      pimple.relax_U_final = r.Get<double>("U_final", 1.0);
+      pimple.relax_p_final = r.Get<double>("p_final", 1.0);
+    }
+    if (s.Has("residual_control")) {
+      const ConfigNode r = s["residual_control"];
+      r.ExpectKeys({"U", "p"});
+      pimple.outer_tolerance_U = r.Get<double>("U", 0.0);
+      pimple.outer_tolerance_p = r.Get<double>("p", 0.0);
+    }
+    if (s.Has("momentum")) pimple.momentum_solver = LoadSolver(s["momentum"], pimple.momentum_solver, false);
+    if (s.Has("pressure")) {
+      pimple.pressure_solver = LoadSolver(s["pressure"], pimple.pressure_solver, true);
+      pimple.pressure_final_relative_tolerance =
+          s["pressure"].Get<double>("final_relative_tolerance", pimple.pressure_final_relative_tolerance);
+    }
+    pimple.p_ref_cell = s.Get<int>("p_ref_cell", 0);
+    pimple.p_ref_value = s.Get<double>("p_ref_value", 0.0);
+  }
+
+  const ConfigNode t = root["time"];
+  t.ExpectKeys({"dt", "end"});
+  c.dt = t.GetPositive("dt");
+  c.end_time = t.GetPositive("end");
+
+  // Boundary: every patch needs a condition for U and p, and every key must
+  // be a patch of the mesh.
+  const ConfigNode b = root["boundary"];
+  std::vector<std::string> patch_names;
+  for (const Patch& p : mesh.patches()) patch_names.push_back(p.name);
+  b.ExpectKeys(patch_names);
+  std::vector<std::unique_ptr<BoundaryCondition<Vector3>>> u_bcs;
+  std::vector<std::unique_ptr<BoundaryCondition<double>>> p_bcs;
+  for (const Patch& p : mesh.patches()) {
+    if (!b.Has(p.name)) {
+      if (p.kind == PatchKind::kEmpty) {
+        u_bcs.push_back(std::make_unique<Empty<Vector3>>());
+        p_bcs.push_back(std::make_unique<Empty<double>>());
+        continue;
+      }
+      b.Fail(fmt::format("a condition for patch '{}' (patches: {})", p.name, fmt::join(patch_names, ", ")));
+    }
+    const ConfigNode pn = b[p.name];
+    pn.ExpectKeys({"U", "p"});
+    u_bcs.push_back(LoadVelocityBc(pn["U"]));
+    p_bcs.push_back(LoadPressureBc(pn["p"]));
+  }
+  auto U = std::make_unique<VectorField>("U", mesh, std::move(u_bcs));
+  auto p = std::make_unique<ScalarField>("p", mesh, std::move(p_bcs));
+
+  const ConfigNode o = root["output"];
+  o.ExpectKeys({"directory", "vtu_interval", "checkpoint_interval", "forces"});
+  c.output_directory = o.Get<std::string>("directory", "results");
+  if (c.output_directory.is_relative()) c.output_directory = case_dir / c.output_directory;
+  c.vtu_interval = o.Get<int>("vtu_interval", 0);
+  c.checkpoint_interval = o.Get<int>("checkpoint_interval", 0);
+  if (o.Has("forces")) {
+    for (const ConfigNode& item : o["forces"].Items()) {
+      const std::string name = item.As<std::string>();
+      if (mesh.FindPatch(name) < 0) {
+        item.Fail(fmt::format("a patch of the mesh ({})", fmt::join(patch_names, ", ")));
+      }
+      c.force_patches.push_back(name);
+    }
+  }
+  try {
+    c.solver = std::make_unique<PimpleSolver>(mesh, physics, schemes, pimple, std::move(U), std::move(p));
+  } catch (const ConfigError& e) {
+    root["solution"].Fail(e.what());
+  }
+  return c;
+}
+
+namespace {
+
+// Pressure and viscous force on a patch (N): p is kinematic, so times rho.
+std::pair<Vector3, Vector3> PatchForce(const PimpleSolver& s, int patch_index, double rho, double nu) {
+  const Mesh& mesh = s.mesh();
+  const Patch& patch = mesh.patches()[patch_index];
+  const int ni = mesh.n_internal_faces();
+  Vector3 fp = Vector3::Zero(), fv = Vector3::Zero();
+  const auto& bc = s.U().bc(patch_index);
+  for (int i = 0; i < patch.size; ++i) {
+    const int f = patch.start + i;
+    fp += rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
+    const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) + bc.gradient_boundary()[i];
+    fv -= rho * nu * sn_grad * mesh.face_area_magnitudes()[f];
+  }
+  return {fp, fv};
+}
+
+}  // namespace
+
+RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
+  const ConfigNode root = ConfigNode::LoadFile(case_file);
+  Case c = LoadCase(root, case_file.parent_path());
+  if (!options.output_override.empty()) c.output_directory = options.output_override;
+  PimpleSolver& solver = *c.solver;
+  const Mesh& mesh = *c.mesh;
+  spdlog::info("mesh quality:\n{}", mesh.Quality().Report());
+  const double nu = root["physics"].GetPositive("nu");
+  fs::create_directories(c.output_directory);
+  RunSummary summary;
+  summary.output_directory = c.output_directory;
+  if (!options.restart.empty()) ReadCheckpoint(options.restart, solver);
+
+  std::vector<std::vector<double>> history;  // rows: time, Co, resU, resp, continuity, forces...
+  PvdSeries pvd(c.output_directory / "fields.pvd");
+  auto write_fields = [&]() {
+    VtuCellData u{"U", 3, {}}, p{"p", 1, {}};
+    for (int i = 0; i < mesh.n_cells(); ++i) {
+      for (int k = 0; k < 3; ++k) u.values.push_back(solver.U()[i][k]);
+      p.values.push_back(solver.p()[i]);
+    }
+    const fs::path file = c.output_directory / fmt::format("fields_{:06d}.vtu", solver.step());
+    WriteVtu(file, mesh, {u, p});
+    pvd.Add(solver.time(), file);
+  };
+  constexpr std::size_t kForceColumn = 9;
+  auto write_history = [&]() {
+    data::H5Writer w(c.output_directory / "history.h5");
+    const std::size_t rows = history.size();
+    auto column = [&](std::size_t col) {
+      std::vector<double> v(rows);
+      for (std::size_t r = 0; r < rows; ++r) v[r] = history[r][col];
+      return v;
+    };
+    w.WriteArray("time", column(0), {rows}, "s", "simulated time at the end of each step");
+    w.WriteArray("courant", column(1), {rows}, "1", "maximum Courant number");
+    w.WriteArray("residuals/U", column(2), {rows}, "1", "initial normalized momentum residual of the step");
+    w.WriteArray("residuals/p", column(3), {rows}, "1", "initial normalized pressure residual of the step");
+    w.WriteArray("continuity", column(4), {rows}, "1", "max_cells |sum F| / sum |F| after the correction");
+    w.WriteArray("wall_time", column(5), {rows}, "s", "wall-clock time since the start of the time loop");
+    w.WriteArray("outer_iterations", column(6), {rows}, "1", "PIMPLE outer iterations of the step");
+    w.WriteArray("pressure_iterations", column(7), {rows}, "1", "pressure CG iterations of the step");
+    w.WriteArray("cpu_time", column(8), {rows}, "s", "process CPU time since the start of the time loop");
+    for (std::size_t k = 0; k < c.force_patches.size(); ++k) {
+      std::vector<double> fp(rows * 3), fv(rows * 3);
+      for (std::size_t r = 0; r < rows; ++r) {
+        for (int d = 0; d < 3; ++d) {
+          fp[r * 3 + d] = history[r][kForceColumn + 6 * k + d];
+          fv[r * 3 + d] = history[r][kForceColumn + 6 * k + 3 + d];
+        }
+      }
+      w.WriteArray("forces/" + c.force_patches[k] + "/pressure", fp, {rows, 3}, "N", "pressure force on the patch");
+      w.WriteArray("forces/" + c.force_patches[k] + "/viscous", fv, {rows, 3}, "N", "viscous force on the patch");
+    }
+    w.Commit();
+  };
+
+  const int total_steps = static_cast<int>(std::ceil((c.end_time - solver.time()) / c.dt - 1e-9));
+  Progress::Options po;
+  po.label = "kelvin run";
+  po.enabled = options.progress;
+  Progress progress(std::max(total_steps, 1), po);
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  for (int i = 0; i < total_steps; ++i) {
+    const StepSummary s = solver.Step(c.dt);
+    summary.outer_iterations += s.outer_iterations;
+    ++summary.steps;
+    if (!s.finite) {
+      summary.status = RunSummary::Status::kDiverged;
+      summary.message = fmt::format(
+          "diverged at step {} (t = {:.6g} s): non-finite residual or field (U residual {:.3g}, p residual {:.3g}, "
+          "Courant {:.3g}); last good checkpoint: {}",
+          s.step, s.time, s.initial_residual_U, s.initial_residual_p, s.courant_max,
+          summary.last_checkpoint.empty() ? "none" : summary.last_checkpoint.string());
+      break;
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    std::vector<double> row = {s.time, s.courant_max, s.initial_residual_U, s.initial_residual_p, s.continuity_error,
+                               wall, static_cast<double>(s.outer_iterations),
+                               static_cast<double>(s.pressure_iterations), cpu};
+    for (const std::string& name : c.force_patches) {
+      const auto [fp, fv] = PatchForce(solver, mesh.FindPatch(name), c.rho, nu);
+      for (int d = 0; d < 3; ++d) row.push_back(fp[d]);
+      for (int d = 0; d < 3; ++d) row.push_back(fv[d]);
+    }
+    history.push_back(std::move(row));
+    const bool last = i + 1 == total_steps;
+    if ((last && c.vtu_interval >= 0) || (c.vtu_interval > 0 && solver.step() % c.vtu_interval == 0)) {
+      write_fields();
+    }
+    if ((last && c.checkpoint_interval >= 0) ||
+        (c.checkpoint_interval > 0 && solver.step() % c.checkpoint_interval == 0)) {
+      summary.last_checkpoint = c.output_directory / "checkpoint.h5";
+      WriteCheckpoint(summary.last_checkpoint, solver);
+      write_history();
+    }
+    progress.Update(i + 1, fmt::format("step {} t={:.4g} Co={:.3g} U={:.2e} p={:.2e}", s.step, s.time,
+                                       s.courant_max, s.initial_residual_U, s.initial_residual_p));
+  }
+  if (!history.empty()) write_history();
+  progress.Finish(summary.status == RunSummary::Status::kCompleted ? "done" : "diverged");
+  summary.time = solver.time();
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (summary.status == RunSummary::Status::kCompleted) {
+    summary.message = fmt::format("completed {} steps to t = {:.6g} s; results in {}", summary.steps, summary.time,
+                                  summary.output_directory.string());
+  }
+  return summary;
+}
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,54 @@
+// Runs a YAML case file (`kelvin run case.yaml`): sections mesh / physics /
+// schemes / solution / time / boundary / output. A bad key, an unknown patch
+// or a patch without a condition is one ConfigError naming the file, line
+// and key. Writes VTU/PVD fields, an HDF5 history (residuals, Courant number,
+// continuity, forces on named patches with pressure and viscous parts) and
+// HDF5 checkpoints; a diverging run stops with a clear status and keeps its
+// last good checkpoint.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "cfd/mesh/mesh.h"
+#include "cfd/solver/pimple_solver.h"
+#include "data/schema/config.h"
+
+namespace kelvin::cfd {
+
+struct RunOptions {
+  std::filesystem::path restart;  // checkpoint to continue from (empty: none)
+  std::filesystem::path output_override;  // replaces output.directory when set
+  bool progress = true;
+};
+
+struct RunSummary {
+  enum class Status { kCompleted, kDiverged };
+  Status status = Status::kCompleted;
+  std::string message;
+  int steps = 0;
+  double time = 0.0;
+  std::filesystem::path output_directory;
+  std::filesystem::path last_checkpoint;
+  double wall_seconds = 0.0;
+  int outer_iterations = 0;
+};
+
+// Everything a case file defines, built and validated (the mesh is owned).
+struct Case {
+  std::unique_ptr<Mesh> mesh;
+  std::unique_ptr<PimpleSolver> solver;
+  double dt = 0.0;
+  double end_time = 0.0;
+  double rho = 1000.0;
+  std::filesystem::path output_directory;
+  int vtu_interval = 0;         // steps; 0 = only the last step, < 0 = never
+  int checkpoint_interval = 0;  // steps; 0 = only the last step, < 0 = never
+  std::vector<std::string> force_patches;
+};
+
+Case LoadCase(const data::ConfigNode& root, const std::filesystem::path& case_dir);
+RunSummary RunCase(const std::filesystem::path& case_file, const RunOptions& options);
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,83 @@
+#include "cfd/io/checkpoint.h"
+
+#include <fmt/format.h>
+
+#include "data/schema/errors.h"
+#include "data/schema/h5_file.h"
+
+namespace kelvin::cfd {
+namespace {
+
+std::vector<double> Flatten(const std::vector<Vector3>& v) {
+  std::vector<double> out(v.size() * 3);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    for (int k = 0; k < 3; ++k) out[3 * i + k] = v[i][k];
+  }
+  return out;
+}
+
+std::vector<Vector3> Unflatten(const data::Series& s) {
+  std::vector<Vector3> out(s.rows);
+  for (std::size_t i = 0; i < s.rows; ++i) out[i] = Vector3(s.values[3 * i], s.values[3 * i + 1], s.values[3 * i + 2]);
+  return out;
+}
+
+}  // namespace
+
+void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solver) {
+  const PimpleSolver::State s = solver.GetState();
+  data::H5Writer w(path, data::H5Writer::Mode::kCreate);
+  w.SetAttribute("/", "kind", "kelvin PIMPLE checkpoint");
+  w.SetAttribute("/", "time", s.time);
+  w.SetAttribute("/", "step", static_cast<double>(s.step));
+  w.SetAttribute("/", "last_dt", s.last_dt);
+  w.SetAttribute("/", "n_cells", static_cast<double>(solver.mesh().n_cells()));
+  w.SetAttribute("/", "n_faces", static_cast<double>(solver.mesh().n_faces()));
+  w.SetAttribute("/", "U_levels", static_cast<double>(s.U_old.size()));
+  w.SetAttribute("/", "phi_levels", static_cast<double>(s.phi_old.size()));
+  w.SetAttribute("/", "bc_states", static_cast<double>(s.bc_state.size()));
+  w.WriteArray("U", Flatten(s.U), {s.U.size(), 3}, "m/s", "velocity");
+  for (std::size_t l = 0; l < s.U_old.size(); ++l) {
+    w.WriteArray(fmt::format("U_old/{}", l), Flatten(s.U_old[l]), {s.U_old[l].size(), 3}, "m/s", "old velocity");
+  }
+  w.WriteArray("p", s.p, {s.p.size()}, "m^2/s^2", "kinematic pressure");
+  w.WriteArray("phi", s.phi, {s.phi.size()}, "m^3/s", "face volume flux");
+  for (std::size_t l = 0; l < s.phi_old.size(); ++l) {
+    w.WriteArray(fmt::format("phi_old/{}", l), s.phi_old[l], {s.phi_old[l].size()}, "m^3/s", "old face flux");
+  }
+  for (std::size_t b = 0; b < s.bc_state.size(); ++b) {
+    if (!s.bc_state[b].empty()) {
+      w.WriteArray(fmt::format("bc/{}", b), s.bc_state[b], {s.bc_state[b].size()}, "", "boundary condition state");
+    }
+  }
+  w.Commit();
+}
+
+void ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver) {
+  data::H5Reader r(path);
+  const auto n_cells = static_cast<int>(r.NumberAttribute("/", "n_cells"));
+  const auto n_faces = static_cast<int>(r.NumberAttribute("/", "n_faces"));
+  if (n_cells != solver.mesh().n_cells() || n_faces != solver.mesh().n_faces()) {
+    throw DataFileError(fmt::format("{}: checkpoint has {} cells and {} faces; the mesh has {} and {}", path.string(),
+                                    n_cells, n_faces, solver.mesh().n_cells(), solver.mesh().n_faces()));
+  }
+  PimpleSolver::State s;
+  s.time = r.NumberAttribute("/", "time");
+  s.step = static_cast<int>(r.NumberAttribute("/", "step"));
+  s.last_dt = r.NumberAttribute("/", "last_dt");
+  s.U = Unflatten(r.Read("U"));
+  const int u_levels = static_cast<int>(r.NumberAttribute("/", "U_levels"));
+  for (int l = 0; l < u_levels; ++l) s.U_old.push_back(Unflatten(r.Read(fmt::format("U_old/{}", l))));
+  s.p = r.Read("p").values;
+  s.phi = r.Read("phi").values;
+  const int phi_levels = static_cast<int>(r.NumberAttribute("/", "phi_levels"));
+  for (int l = 0; l < phi_levels; ++l) s.phi_old.push_back(r.Read(fmt::format("phi_old/{}", l)).values);
+  const int n_bc = static_cast<int>(r.NumberAttribute("/", "bc_states"));
+  for (int b = 0; b < n_bc; ++b) {
+    const std::string name = fmt::format("bc/{}", b);
+    s.bc_state.push_back(r.Has(name) ? r.Read(name).values : std::vector<double>{});
+  }
+  solver.SetState(s);
+}
+
+}  // namespace kelvin::cfd

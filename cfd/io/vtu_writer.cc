@@ -1,0 +1,86 @@
+#include "cfd/io/vtu_writer.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "data/schema/atomic_file.h"
+
+namespace kelvin::cfd {
+
+void WriteVtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<VtuCellData>& data) {
+  std::string out;
+  out.reserve(static_cast<std::size_t>(mesh.n_cells()) * 400);
+  auto append = [&out](const std::string& s) { out += s; };
+  append("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n");
+  append(fmt::format("<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", mesh.n_points(),
+                     mesh.n_cells()));
+  append("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+  for (const Vector3& p : mesh.points()) append(fmt::format("{:.9g} {:.9g} {:.9g}\n", p.x(), p.y(), p.z()));
+  append("</DataArray>\n</Points>\n<Cells>\n");
+  // Connectivity: the distinct points of each cell; faces: per cell
+  // [n_faces, (n_points, ids...)...] with outward orientation.
+  std::string connectivity, offsets, types, faces, face_offsets;
+  long long conn_count = 0, face_count = 0;
+  const auto off = mesh.cell_face_offsets();
+  const auto cf = mesh.cell_faces();
+  std::vector<int> pts;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    pts.clear();
+    std::string cell_faces = fmt::format("{}", off[c + 1] - off[c]);
+    long long n_face_entries = 1;
+    for (int k = off[c]; k < off[c + 1]; ++k) {
+      const int f = cf[k];
+      const std::span<const int> fp = mesh.face(f);
+      cell_faces += fmt::format(" {}", fp.size());
+      const bool flip = mesh.owner()[f] != c;
+      for (std::size_t i = 0; i < fp.size(); ++i) {
+        const int p = flip ? fp[fp.size() - 1 - i] : fp[i];
+        cell_faces += fmt::format(" {}", p);
+        pts.push_back(p);
+      }
+      n_face_entries += 1 + static_cast<long long>(fp.size());
+    }
+    std::sort(pts.begin(), pts.end());
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    for (int p : pts) connectivity += fmt::format("{} ", p);
+    connectivity += "\n";
+    conn_count += static_cast<long long>(pts.size());
+    offsets += fmt::format("{}\n", conn_count);
+    types += "42\n";
+    faces += cell_faces + "\n";
+    face_count += n_face_entries;
+    face_offsets += fmt::format("{}\n", face_count);
+  }
+  append("<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n" + connectivity + "</DataArray>\n");
+  append("<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n" + offsets + "</DataArray>\n");
+  append("<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n" + types + "</DataArray>\n");
+  append("<DataArray type=\"Int64\" Name=\"faces\" format=\"ascii\">\n" + faces + "</DataArray>\n");
+  append("<DataArray type=\"Int64\" Name=\"faceoffsets\" format=\"ascii\">\n" + face_offsets + "</DataArray>\n");
+  append("</Cells>\n<CellData>\n");
+  for (const VtuCellData& d : data) {
+    append(fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
+                       d.name, d.components));
+    for (int c = 0; c < mesh.n_cells(); ++c) {
+      for (int k = 0; k < d.components; ++k) {
+        append(fmt::format("{:.9g}{}", d.values[static_cast<std::size_t>(c) * d.components + k],
+                           k + 1 == d.components ? "\n" : " "));
+      }
+    }
+    append("</DataArray>\n");
+  }
+  append("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+  data::WriteFileAtomically(path, out);
+}
+
+void PvdSeries::Add(double time, const std::filesystem::path& vtu_file) {
+  entries_.emplace_back(time, vtu_file.filename().string());
+  std::string out = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  for (const auto& [t, file] : entries_) {
+    out += fmt::format("  <DataSet timestep=\"{:.12g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", t, file);
+  }
+  out += "</Collection>\n</VTKFile>\n";
+  data::WriteFileAtomically(path_, out);
+}
+
+}  // namespace kelvin::cfd

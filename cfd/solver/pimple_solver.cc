@@ -1,0 +1,423 @@
+#include "cfd/solver/pimple_solver.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "data/schema/errors.h"
+
+namespace kelvin::cfd {
+
+void PhysicsOptions::Validate() const {
+  if (!(nu > 0.0) || !std::isfinite(nu)) throw ConfigError(fmt::format("physics.nu = {}; expected > 0 m^2/s", nu));
+}
+
+void PimpleOptions::Validate() const {
+  if (n_outer < 1) throw ConfigError(fmt::format("solution.n_outer = {}; expected >= 1", n_outer));
+  if (n_correctors < 1) throw ConfigError(fmt::format("solution.n_correctors = {}; expected >= 1", n_correctors));
+  if (n_non_orthogonal < 0) {
+    throw ConfigError(fmt::format("solution.n_non_orthogonal = {}; expected >= 0", n_non_orthogonal));
+  }
+  for (double a : {relax_U, relax_p, relax_U_final, relax_p_final}) {
+    if (!(a > 0.0 && a <= 1.0)) throw ConfigError(fmt::format("relaxation factor {}; expected in (0, 1]", a));
+  }
+  momentum_solver.Validate();
+  pressure_solver.Validate();
+  if (!(pressure_final_relative_tolerance >= 0.0 && pressure_final_relative_tolerance < 1.0)) {
+    throw ConfigError("solution.pressure.final_relative_tolerance must be in [0, 1)");
+  }
+}
+
+PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptions schemes, PimpleOptions pimple,
+                           std::unique_ptr<VectorField> U, std::unique_ptr<ScalarField> p)
+    : mesh_(mesh),
+      physics_(std::move(physics)),
+      schemes_(schemes),
+      pimple_(pimple),
+      U_(std::move(U)),
+      p_(std::move(p)),
+      phi_(mesh.n_faces(), 0.0),
+      mesh_flux_(mesh.n_faces(), 0.0),
+      grad_(mesh, schemes.gradient),
+      non_orth_(mesh),
+      UEqn_(mesh),
+      system_(mesh) {
+  physics_.Validate();
+  schemes_.Validate();
+  pimple_.Validate();
+  if (pimple_.p_ref_cell < 0 || pimple_.p_ref_cell >= mesh.n_cells()) {
+    throw ConfigError(fmt::format("solution.p_ref_cell = {}; expected a cell index in [0, {})", pimple_.p_ref_cell,
+                                  mesh.n_cells()));
+  }
+  for (const Patch& patch : mesh.patches()) {
+    if (patch.kind != PatchKind::kEmpty) continue;
+    for (int f = patch.start; f < patch.start + patch.size; ++f) {
+      const Vector3 n = mesh.face_areas()[f] / mesh.face_area_magnitudes()[f];
+      for (int k = 0; k < 3; ++k) {
+        if (std::abs(n[k]) > 0.99) solve_component_[k] = false;
+      }
+    }
+  }
+  // The corrections vanish identically on orthogonal meshes: skip their work.
+  non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;
+  if (schemes_.skew_correction) skew_ = mesh.SkewVectors();
+  momentum_solver_ = LinearSolver::Create(pimple_.momentum_solver);
+  pressure_solver_ = LinearSolver::Create(pimple_.pressure_solver);
+}
+
+void PimpleSolver::SetMeshFlux(std::vector<double> mesh_flux) {
+  KELVIN_CHECK(static_cast<int>(mesh_flux.size()) == mesh_.n_faces(), "mesh flux on every face");
+  mesh_flux_ = std::move(mesh_flux);
+}
+
+std::span<const double> PimpleSolver::RelativeFlux() {
+  flux_rel_.resize(phi_.size());
+  for (std::size_t f = 0; f < phi_.size(); ++f) flux_rel_[f] = phi_[f] - mesh_flux_[f];
+  return flux_rel_;
+}
+
+void PimpleSolver::Initialize() {
+  // Flux from the initial velocity (boundary values from the conditions).
+  U_->CorrectBoundary(time_, {});
+  const int ni = mesh_.n_internal_faces();
+  const auto w = mesh_.weights();
+  const auto sf = mesh_.face_areas();
+  for (int f = 0; f < ni; ++f) {
+    phi_[f] = (w[f] * (*U_)[mesh_.owner()[f]] + (1.0 - w[f]) * (*U_)[mesh_.neighbour()[f]]).dot(sf[f]);
+  }
+  for (int f = ni; f < mesh_.n_faces(); ++f) phi_[f] = U_->boundary()[f - ni].dot(sf[f]);
+  U_->CorrectBoundary(time_, RelativeFlux());
+  p_->CorrectBoundary(time_, RelativeFlux());
+  initialized_ = true;
+}
+
+void PimpleSolver::AssembleMomentum(double dt, std::span<const double> flux_rel) {
+  UEqn_.Reset();
+  AddDdt(UEqn_, *U_, dt, schemes_.time);
+  grad_.Compute(std::span<const Vector3>(U_->values()), std::span<const Vector3>(U_->boundary()), grad_U_);
+  AddConvection(UEqn_, *U_, flux_rel, schemes_.convection, grad_U_);
+  AddLaplacian(UEqn_, *U_, physics_.nu, non_orth_, non_orth_correction_ ? &grad_U_ : nullptr);
+  if (physics_.source) {
+    source_.resize(mesh_.n_cells());
+    for (int c = 0; c < mesh_.n_cells(); ++c) source_[c] = physics_.source(mesh_.cell_centres()[c], time_);
+    AddSource(UEqn_, std::span<const Vector3>(source_));
+  }
+}
+
+double PimpleSolver::SolveMomentum(const std::vector<Vector3>& grad_p, StepSummary& summary) {
+  std::vector<double> diag_k, source_k, x(mesh_.n_cells());
+  const auto vol = mesh_.cell_volumes();
+  double worst = 0.0;
+  bool filled_off_diagonal = false;
+  for (int k = 0; k < 3; ++k) {
+    if (!solve_component_[k]) {
+      for (int c = 0; c < mesh_.n_cells(); ++c) (*U_)[c][k] = 0.0;
+      continue;
+    }
+    UEqn_.ComponentSystem(k, diag_k, source_k);
+    for (int c = 0; c < mesh_.n_cells(); ++c) {
+      source_k[c] -= grad_p[c][k] * vol[c];
+      x[c] = (*U_)[c][k];
+    }
+    if (!filled_off_diagonal) {
+      system_.Fill(diag_k, UEqn_.upper, UEqn_.lower);
+      filled_off_diagonal = true;
+    } else {
+      system_.FillDiagonal(diag_k);
+    }
+    const SolverSummary s = momentum_solver_->Solve(system_.matrix(), source_k, x);
+    summary.momentum_iterations += s.iterations;
+    worst = std::max(worst, s.initial_residual);
+    if (!std::isfinite(s.initial_residual)) worst = s.initial_residual;
+    for (int c = 0; c < mesh_.n_cells(); ++c) (*U_)[c][k] = x[c];
+  }
+  return worst;
+}
+
+void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alpha_U, double alpha_p,
+                                     const std::vector<Vector3>& U_prev, const std::vector<double>& phi_prev,
+                                     StepSummary& summary, bool first_pressure_solve) {
+  const int nc = mesh_.n_cells();
+  const int ni = mesh_.n_internal_faces();
+  const int nf = mesh_.n_faces();
+  const auto owner = mesh_.owner();
+  const auto neighbour = mesh_.neighbour();
+  const auto w = mesh_.weights();
+  const auto sf = mesh_.face_areas();
+  const auto mag = mesh_.face_area_magnitudes();
+
+  // rAU = 1/A, HbyA = H/A.
+  const std::vector<double> A = UEqn_.A();
+  std::vector<double> rAU(nc);
+  for (int c = 0; c < nc; ++c) rAU[c] = 1.0 / A[c];
+  std::vector<Vector3> HbyA = UEqn_.H(std::span<const Vector3>(U_->values()));
+  for (int c = 0; c < nc; ++c) HbyA[c] *= rAU[c];
+
+  // Rhie-Chow flux of HbyA with the transient and relaxation-consistent terms.
+  std::vector<double> phi_HbyA(nf), rAUf(nf);
+  std::vector<Vector3> HbyA_boundary(nf - ni);
+  for (int p = 0; p < U_->n_patches(); ++p) {
+    const Patch& patch = mesh_.patches()[p];
+    const auto& bc = U_->bc(p);
+    for (int i = 0; i < patch.size; ++i) {
+      const int f = patch.start + i;
+      rAUf[f] = rAU[owner[f]];
+      HbyA_boundary[f - ni] = bc.value_internal()[i].cwiseProduct(HbyA[owner[f]]) + bc.value_boundary()[i];
+      phi_HbyA[f] = HbyA_boundary[f - ni].dot(sf[f]);
+    }
+  }
+  const bool skew = schemes_.skew_correction;
+  if (skew) {
+    grad_.Compute(std::span<const Vector3>(HbyA), std::span<const Vector3>(HbyA_boundary), grad_HbyA_);
+  }
+  const std::vector<Vector3>& skew_vec = skew_;
+  // Face interpolation, skew-corrected with the gradient g when asked.
+  auto interp = [&](const std::vector<Vector3>& v, const std::vector<Matrix3>& g, int f, int P, int N) {
+    Vector3 out = w[f] * v[P] + (1.0 - w[f]) * v[N];
+    if (skew) out += (w[f] * g[P] + (1.0 - w[f]) * g[N]) * skew_vec[f];
+    return out;
+  };
+  const bool backward = schemes_.time == TimeScheme::kBackward && U_->n_old() >= 2 && phi_old_.size() >= 2;
+  for (int f = 0; f < ni; ++f) {
+    const int P = owner[f], N = neighbour[f];
+    rAUf[f] = w[f] * rAU[P] + (1.0 - w[f]) * rAU[N];
+    phi_HbyA[f] = interp(HbyA, grad_HbyA_, f, P, N).dot(sf[f]);
+    double ddt_corr;
+    if (backward) {
+      Vector3 u_old = w[f] * (2.0 * U_->old(0)[P] - 0.5 * U_->old(1)[P]) +
+                      (1.0 - w[f]) * (2.0 * U_->old(0)[N] - 0.5 * U_->old(1)[N]);
+      if (skew) u_old += 1.5 * (w[f] * grad_U_old_[P] + (1.0 - w[f]) * grad_U_old_[N]) * skew_vec[f];
+      ddt_corr = (2.0 * phi_old_[0][f] - 0.5 * phi_old_[1][f] - u_old.dot(sf[f])) / dt;
+    } else {
+      const Vector3 u_old = interp(U_->old(0), grad_U_old_, f, P, N);
+      ddt_corr = (phi_old_[0][f] - u_old.dot(sf[f])) / dt;
+    }
+    phi_HbyA[f] += rAUf[f] * ddt_corr;
+    if (alpha_U < 1.0) {
+      const Vector3 u_prev = interp(U_prev, grad_U_, f, P, N);
+      phi_HbyA[f] += (1.0 - alpha_U) * (phi_prev[f] - u_prev.dot(sf[f]));
+    }
+  }
+
+  // Does any boundary fix the pressure level?
+  bool fixed_level = false;
+  for (int p = 0; p < p_->n_patches(); ++p) {
+    for (double g : p_->bc(p).gradient_internal()) fixed_level = fixed_level || g != 0.0;
+  }
+
+  std::vector<double> diag(nc), off(ni), rhs(nc), face_corr(ni, 0.0);
+  std::vector<double> p_before(p_->values());
+  for (int non_orth = 0; non_orth <= pimple_.n_non_orthogonal; ++non_orth) {
+    const bool last_non_orth = non_orth == pimple_.n_non_orthogonal;
+    std::fill(diag.begin(), diag.end(), 0.0);
+    for (int c = 0; c < nc; ++c) rhs[c] = 0.0;
+    if (non_orth_correction_) {
+      grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
+    }
+    for (int f = 0; f < ni; ++f) {
+      const int P = owner[f], N = neighbour[f];
+      const double a = rAUf[f] * mag[f] * non_orth_.delta_coeffs[f];
+      diag[P] += a;
+      diag[N] += a;
+      off[f] = -a;
+      if (non_orth_correction_) {
+        const Vector3 g = w[f] * grad_p_[P] + (1.0 - w[f]) * grad_p_[N];
+        face_corr[f] = rAUf[f] * mag[f] * g.dot(non_orth_.correction[f]);
+      }
+      // Continuity: sum_out (phiHbyA - a (pN - pP) - corr) = 0.
+      const double known = phi_HbyA[f] - face_corr[f];
+      rhs[P] -= known;
+      rhs[N] += known;
+    }
+    for (int p = 0; p < p_->n_patches(); ++p) {
+      const Patch& patch = mesh_.patches()[p];
+      const auto& bc = p_->bc(p);
+      for (int i = 0; i < patch.size; ++i) {
+        const int f = patch.start + i;
+        const double a = rAUf[f] * mag[f];
+        diag[owner[f]] -= a * bc.gradient_internal()[i];
+        rhs[owner[f]] += a * bc.gradient_boundary()[i] - phi_HbyA[f];
+      }
+    }
+    if (!fixed_level) {
+      const int r = pimple_.p_ref_cell;
+      rhs[r] += diag[r] * pimple_.p_ref_value;
+      diag[r] += diag[r];
+    }
+    system_.Fill(diag, off, off);
+    const bool final_solve = final_corrector && last_non_orth;
+    pressure_solver_->SetRelativeTolerance(final_solve ? pimple_.pressure_final_relative_tolerance
+                                                       : pimple_.pressure_solver.relative_tolerance);
+    const SolverSummary s = pressure_solver_->Solve(system_.matrix(), rhs, p_->values());
+    summary.pressure_iterations += s.iterations;
+    if (first_pressure_solve && non_orth == 0) summary.initial_residual_p = s.initial_residual;
+    if (!std::isfinite(s.final_relative_residual)) summary.finite = false;
+    p_->CorrectBoundary(time_, RelativeFlux());
+    if (last_non_orth) {
+      // Conservative flux from the same discrete operator.
+      for (int f = 0; f < ni; ++f) {
+        const double a = rAUf[f] * mag[f] * non_orth_.delta_coeffs[f];
+        phi_[f] = phi_HbyA[f] - a * ((*p_)[neighbour[f]] - (*p_)[owner[f]]) - face_corr[f];
+      }
+      for (int p = 0; p < p_->n_patches(); ++p) {
+        const Patch& patch = mesh_.patches()[p];
+        const auto& bc = p_->bc(p);
+        for (int i = 0; i < patch.size; ++i) {
+          const int f = patch.start + i;
+          const double sn_grad = bc.gradient_internal()[i] * (*p_)[owner[f]] + bc.gradient_boundary()[i];
+          phi_[f] = phi_HbyA[f] - rAUf[f] * mag[f] * sn_grad;
+        }
+      }
+    }
+  }
+  // Pressure relaxation for the momentum correction (the flux keeps the
+  // unrelaxed pressure, as in OpenFOAM).
+  if (alpha_p < 1.0) {
+    for (int c = 0; c < nc; ++c) (*p_)[c] = p_before[c] + alpha_p * ((*p_)[c] - p_before[c]);
+    p_->CorrectBoundary(time_, RelativeFlux());
+  }
+  // Let boundary conditions with their own unknowns see the corrected flux.
+  for (int p = 0; p < p_->n_patches(); ++p) {
+    BcContext ctx{mesh_, mesh_.patches()[p], time_, phi_};
+    p_->bc(p).CorrectAfterFlux(ctx, phi_);
+  }
+  grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
+  for (int c = 0; c < nc; ++c) {
+    (*U_)[c] = HbyA[c] - rAU[c] * grad_p_[c];
+    for (int k = 0; k < 3; ++k) {
+      if (!solve_component_[k]) (*U_)[c][k] = 0.0;
+    }
+  }
+  U_->CorrectBoundary(time_, RelativeFlux());
+}
+
+double PimpleSolver::ContinuityError(double* global) const {
+  const int nc = mesh_.n_cells();
+  const int ni = mesh_.n_internal_faces();
+  std::vector<double> sum(nc, 0.0), abs_sum(nc, 0.0);
+  for (int f = 0; f < mesh_.n_faces(); ++f) {
+    sum[mesh_.owner()[f]] += phi_[f];
+    abs_sum[mesh_.owner()[f]] += std::abs(phi_[f]);
+    if (f < ni) {
+      sum[mesh_.neighbour()[f]] -= phi_[f];
+      abs_sum[mesh_.neighbour()[f]] += std::abs(phi_[f]);
+    }
+  }
+  double worst = 0.0, scale = 0.0;
+  for (int c = 0; c < nc; ++c) scale = std::max(scale, abs_sum[c]);
+  for (int c = 0; c < nc; ++c) worst = std::max(worst, std::abs(sum[c]));
+  double boundary = 0.0, boundary_abs = 0.0;
+  for (int f = ni; f < mesh_.n_faces(); ++f) {
+    boundary += phi_[f];
+    boundary_abs += std::abs(phi_[f]);
+  }
+  if (global) *global = boundary_abs > 0 ? std::abs(boundary) / boundary_abs : std::abs(boundary);
+  return scale > 0 ? worst / scale : worst;
+}
+
+StepSummary PimpleSolver::Step(double dt) {
+  KELVIN_CHECK(dt > 0.0, "positive time step");
+  if (!initialized_) Initialize();
+  StepSummary summary;
+  U_->StoreOldTime(2);
+  if (phi_old_.size() < 2) phi_old_.emplace_back();
+  for (std::size_t i = phi_old_.size() - 1; i > 0; --i) phi_old_[i].swap(phi_old_[i - 1]);
+  phi_old_[0] = phi_;
+  time_ += dt;
+  ++step_;
+  last_dt_ = dt;
+  summary.step = step_;
+  summary.time = time_;
+  // Fresh AMG hierarchy each time step (and when the iterations grow).
+  if (pimple_.pressure_solver.amg.rebuild_each_step) pressure_solver_->RequestSetup();
+
+  bool converged = false;
+  for (int outer = 0; outer < pimple_.n_outer; ++outer) {
+    const bool final_outer = outer == pimple_.n_outer - 1 || converged;
+    const double alpha_U = final_outer ? pimple_.relax_U_final : pimple_.relax_U;
+    const double alpha_p = final_outer ? pimple_.relax_p_final : pimple_.relax_p;
+    const std::vector<Vector3> U_prev = U_->values();
+    const std::vector<double> phi_prev = phi_;
+    const std::span<const double> flux_rel = RelativeFlux();
+    U_->CorrectBoundary(time_, flux_rel);
+    p_->CorrectBoundary(time_, flux_rel);
+    AssembleMomentum(dt, flux_rel);
+    if (outer == 0 && schemes_.skew_correction) grad_U_old_ = grad_U_;
+    UEqn_.Relax(std::span<const Vector3>(U_->values()), alpha_U);
+    double res_U = 0.0;
+    if (pimple_.momentum_predictor) {
+      grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
+      res_U = SolveMomentum(grad_p_, summary);
+      U_->CorrectBoundary(time_, flux_rel);
+    }
+    if (outer == 0) summary.initial_residual_U = res_U;
+    const double res_p_before = summary.initial_residual_p;
+    for (int corr = 0; corr < pimple_.n_correctors; ++corr) {
+      const bool final_corrector = final_outer && corr == pimple_.n_correctors - 1;
+      PressureCorrector(dt, final_corrector, alpha_U, alpha_p, U_prev, phi_prev, summary,
+                        outer == 0 && corr == 0);
+    }
+    summary.outer_iterations = outer + 1;
+    if (!std::isfinite(res_U)) summary.finite = false;
+    if (final_outer) {
+      summary.outer_converged = converged || pimple_.n_outer == 1;
+      break;
+    }
+    // Residual control on this outer iteration's initial residuals.
+    const double res_p = outer == 0 ? summary.initial_residual_p : res_p_before;
+    if (pimple_.outer_tolerance_U > 0.0 && pimple_.outer_tolerance_p > 0.0 && res_U < pimple_.outer_tolerance_U &&
+        res_p < pimple_.outer_tolerance_p) {
+      converged = true;
+    }
+  }
+  // Courant number and conservation.
+  const auto vol = mesh_.cell_volumes();
+  std::vector<double> sum_abs(mesh_.n_cells(), 0.0);
+  for (int f = 0; f < mesh_.n_faces(); ++f) {
+    sum_abs[mesh_.owner()[f]] += std::abs(phi_[f] - mesh_flux_[f]);
+    if (f < mesh_.n_internal_faces()) sum_abs[mesh_.neighbour()[f]] += std::abs(phi_[f] - mesh_flux_[f]);
+  }
+  for (int c = 0; c < mesh_.n_cells(); ++c) {
+    summary.courant_max = std::max(summary.courant_max, 0.5 * dt * sum_abs[c] / vol[c]);
+  }
+  summary.continuity_error = ContinuityError(&summary.global_mass_imbalance);
+  for (int c = 0; c < mesh_.n_cells() && summary.finite; ++c) {
+    if (!std::isfinite((*U_)[c].squaredNorm()) || !std::isfinite((*p_)[c])) summary.finite = false;
+  }
+  if (!std::isfinite(summary.initial_residual_p) || !std::isfinite(summary.initial_residual_U)) summary.finite = false;
+  return summary;
+}
+
+PimpleSolver::State PimpleSolver::GetState() const {
+  State s;
+  s.time = time_;
+  s.step = step_;
+  s.last_dt = last_dt_;
+  s.U = U_->values();
+  for (int l = 0; l < U_->n_old(); ++l) s.U_old.push_back(U_->old(l));
+  s.p = p_->values();
+  s.phi = phi_;
+  s.phi_old = phi_old_;
+  for (int p = 0; p < U_->n_patches(); ++p) s.bc_state.push_back(U_->bc(p).State());
+  for (int p = 0; p < p_->n_patches(); ++p) s.bc_state.push_back(p_->bc(p).State());
+  return s;
+}
+
+void PimpleSolver::SetState(const State& s) {
+  time_ = s.time;
+  step_ = s.step;
+  last_dt_ = s.last_dt;
+  U_->values() = s.U;
+  U_->SetOld(s.U_old);
+  p_->values() = s.p;
+  phi_ = s.phi;
+  phi_old_ = s.phi_old;
+  for (int p = 0; p < U_->n_patches(); ++p) U_->bc(p).SetState(s.bc_state.at(p));
+  for (int p = 0; p < p_->n_patches(); ++p) p_->bc(p).SetState(s.bc_state.at(U_->n_patches() + p));
+  initialized_ = true;
+  U_->CorrectBoundary(time_, RelativeFlux());
+  p_->CorrectBoundary(time_, RelativeFlux());
+}
+
+}  // namespace kelvin::cfd

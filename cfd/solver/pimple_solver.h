@@ -1,0 +1,164 @@
+// Incompressible PIMPLE solver on collocated polyhedral cells (see
+// docs/lfs-formulation.md section 4). One time step:
+//   outer correctors (with under-relaxation and residual control)
+//     momentum predictor: ddt(U) + div(F - F_mesh, U) - div(nu grad U) = -grad p + s
+//     PISO correctors: Rhie-Chow flux of HbyA with the transient and
+//       relaxation-consistent terms; pressure equation with non-orthogonal
+//       correctors (CG + BoomerAMG); conservative flux update; U correction.
+// p is the kinematic pressure (m^2/s^2); F the volume flux (m^3/s). The mesh
+// flux F_mesh (zero unless a moving-mesh stage sets it) only enters the
+// convective flux; continuity uses the absolute flux.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "cfd/field/field.h"
+#include "cfd/fv/fv_matrix.h"
+#include "cfd/fv/gradient.h"
+#include "cfd/fv/schemes.h"
+#include "cfd/linalg/linear_solver.h"
+
+namespace kelvin::cfd {
+
+struct PhysicsOptions {
+  double nu = 1e-6;  // kinematic viscosity, m^2/s
+  // Optional momentum source per unit mass s(x, t) in m/s^2 (body force,
+  // manufactured-solution source).
+  std::function<Vector3(const Vector3& x, double t)> source;
+  void Validate() const;
+};
+
+struct PimpleOptions {
+  int n_outer = 1;          // outer correctors (1 = PISO)
+  int n_correctors = 2;     // pressure (PISO) correctors per outer iteration
+  int n_non_orthogonal = 0; // extra pressure solves per corrector
+  bool momentum_predictor = true;
+  // Under-relaxation of the non-final outer iterations and of the final one.
+  double relax_U = 1.0;
+  double relax_p = 1.0;
+  double relax_U_final = 1.0;
+  double relax_p_final = 1.0;
+  // Residual control: outer iterations stop once the initial residuals of U
+  // and p of an outer iteration fall below these (0 = run all n_outer).
+  double outer_tolerance_U = 0.0;
+  double outer_tolerance_p = 0.0;
+  LinearSolverOptions momentum_solver;
+  LinearSolverOptions pressure_solver = DefaultPressureSolver();
+  // Relative tolerance of the last pressure solve of a time step (pFinal).
+  double pressure_final_relative_tolerance = 1e-8;
+  // Reference cell for a pressure level when no boundary fixes it.
+  int p_ref_cell = 0;
+  double p_ref_value = 0.0;
+  void Validate() const;
+  static LinearSolverOptions DefaultPressureSolver() {
+    LinearSolverOptions o;
+    o.type = LinearSolverOptions::Type::kPcgAmg;
+    o.relative_tolerance = 1e-6;
+    return o;
+  }
+};
+
+struct StepSummary {
+  int step = 0;
+  double time = 0.0;
+  double courant_max = 0.0;
+  int outer_iterations = 0;
+  bool outer_converged = false;
+  double initial_residual_U = 0.0;  // first outer iteration, max over components
+  double initial_residual_p = 0.0;  // first pressure solve of the step
+  int pressure_iterations = 0;      // total over the step
+  int momentum_iterations = 0;
+  // max over cells of |sum_f F_f| / sum_f |F_f| after the last correction.
+  double continuity_error = 0.0;
+  // |sum of boundary fluxes| / sum |boundary fluxes|.
+  double global_mass_imbalance = 0.0;
+  bool finite = true;
+};
+
+class PimpleSolver {
+ public:
+  PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptions schemes, PimpleOptions pimple,
+               std::unique_ptr<VectorField> U, std::unique_ptr<ScalarField> p);
+
+  // Advances one time step of size dt (s).
+  StepSummary Step(double dt);
+
+  double time() const { return time_; }
+  int step() const { return step_; }
+  const Mesh& mesh() const { return mesh_; }
+  VectorField& U() { return *U_; }
+  const VectorField& U() const { return *U_; }
+  ScalarField& p() { return *p_; }
+  const ScalarField& p() const { return *p_; }
+  // Absolute volume flux on every face (m^3/s).
+  const std::vector<double>& flux() const { return phi_; }
+  // Mesh-motion hook: F_mesh on every face (m^3/s).
+  void SetMeshFlux(std::vector<double> mesh_flux);
+  const PimpleOptions& options() const { return pimple_; }
+
+  // Full state for checkpoints: continuing from a restored state gives the
+  // same results bit for bit.
+  struct State {
+    double time = 0.0;
+    int step = 0;
+    double last_dt = 0.0;
+    std::vector<Vector3> U;
+    std::vector<std::vector<Vector3>> U_old;
+    std::vector<double> p;
+    std::vector<double> phi;
+    std::vector<std::vector<double>> phi_old;
+    std::vector<std::vector<double>> bc_state;  // per U patch then per p patch
+  };
+  State GetState() const;
+  void SetState(const State& state);
+
+ private:
+  void Initialize();
+  void AssembleMomentum(double dt, std::span<const double> flux_rel);
+  double SolveMomentum(const std::vector<Vector3>& grad_p, StepSummary& summary);
+  void PressureCorrector(double dt, bool final_corrector, double alpha_U, double alpha_p,
+                         const std::vector<Vector3>& U_prev, const std::vector<double>& phi_prev,
+                         StepSummary& summary, bool first_pressure_solve);
+  // F - F_mesh on every face (refreshed on each call).
+  std::span<const double> RelativeFlux();
+  double ContinuityError(double* global) const;
+
+  const Mesh& mesh_;
+  PhysicsOptions physics_;
+  SchemeOptions schemes_;
+  PimpleOptions pimple_;
+  std::unique_ptr<VectorField> U_;
+  std::unique_ptr<ScalarField> p_;
+  std::vector<double> phi_;
+  std::vector<std::vector<double>> phi_old_;
+  std::vector<double> mesh_flux_;
+  std::vector<double> flux_rel_;
+  bool non_orth_correction_ = true;
+  double time_ = 0.0;
+  int step_ = 0;
+  double last_dt_ = 0.0;
+  bool initialized_ = false;
+
+  Gradient grad_;
+  NonOrthGeometry non_orth_;
+  FvMatrix<Vector3> UEqn_;
+  // One matrix with the mesh sparsity, refilled for each momentum component
+  // and for the pressure (the AMG solver keeps its own copy).
+  SparseSystem system_;
+  std::unique_ptr<LinearSolver> momentum_solver_;
+  std::unique_ptr<LinearSolver> pressure_solver_;
+  // Velocity components that are solved (false for the normal of the empty
+  // patches of a 2D mesh; that component stays zero).
+  std::array<bool, 3> solve_component_ = {true, true, true};
+  std::vector<Matrix3> grad_U_;
+  std::vector<Matrix3> grad_U_old_;   // gradient of U at the start of the step (skew correction)
+  std::vector<Matrix3> grad_HbyA_;
+  std::vector<Vector3> skew_;  // internal faces, only with skew correction
+  std::vector<Vector3> grad_p_;
+  std::vector<Vector3> source_;
+};
+
+}  // namespace kelvin::cfd

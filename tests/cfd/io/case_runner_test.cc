@@ -1,0 +1,144 @@
+// Case files: a clear error for each bad input, a run that writes its
+// outputs, a restart through the CLI, and a diverging run.
+#include "cfd/io/case_runner.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "data/schema/errors.h"
+#include "data/schema/h5_file.h"
+#include "tests/test_utilities/test_utilities.h"
+
+namespace kelvin::cfd {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kCase = R"(mesh:
+  box: {max: [1, 1, 0.1], cells: [12, 12, 1], empty: z}
+physics: {nu: 0.01}
+schemes: {convection: linear_upwind}
+solution:
+  n_correctors: 2
+  pressure: {solver: pcg_amg, relative_tolerance: 1.0e-6}
+time: {dt: DT, end: END}
+boundary:
+  ymax: {U: {type: fixedValue, value: [1, 0, 0]}, p: {type: zeroGradient}}
+  xmin: {U: {type: noSlip}, p: {type: zeroGradient}}
+  xmax: {U: {type: noSlip}, p: {type: zeroGradient}}
+  ymin: {U: {type: noSlip}, p: {type: zeroGradient}}
+output: {directory: out, vtu_interval: 5, checkpoint_interval: 5, forces: [ymax]}
+)";
+
+std::string CaseText(double dt = 0.05, double end = 0.5) {
+  std::string s = kCase;
+  s.replace(s.find("DT"), 2, std::to_string(dt));
+  s.replace(s.find("END"), 3, std::to_string(end));
+  return s;
+}
+
+fs::path Write(const fs::path& dir, const std::string& text) {
+  const fs::path p = dir / "case.yaml";
+  std::ofstream(p) << text;
+  return p;
+}
+
+void ExpectConfigError(const std::string& text, const std::string& part) {
+  kelvin::testing::ScopedTempDir tmp;
+  RunOptions o;
+  o.progress = false;
+  try {
+    RunCase(Write(tmp.path(), text), o);
+    FAIL() << "expected a ConfigError with '" << part << "'";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("case.yaml"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CaseRunner, UnknownKeyNamesTheKey) {
+  std::string t = CaseText();
+  t.replace(t.find("n_correctors"), 12, "n_corectors");
+  ExpectConfigError(t, "n_corectors");
+}
+
+TEST(CaseRunner, UnknownPatchIsAnError) {
+  std::string t = CaseText();
+  t.replace(t.find("  ymin:"), 7, "  floor:");
+  ExpectConfigError(t, "floor");
+}
+
+TEST(CaseRunner, PatchWithoutConditionIsAnError) {
+  std::string t = CaseText();
+  const std::size_t at = t.find("  ymin:");
+  t.erase(at, t.find('\n', at) - at + 1);
+  ExpectConfigError(t, "ymin");
+}
+
+TEST(CaseRunner, UnknownConditionTypeIsAnError) {
+  std::string t = CaseText();
+  t.replace(t.find("type: noSlip"), 12, "type: sticky");
+  ExpectConfigError(t, "sticky");
+}
+
+TEST(CaseRunner, RunWritesFieldsHistoryAndCheckpoint) {
+  kelvin::testing::ScopedTempDir tmp;
+  RunOptions o;
+  o.progress = false;
+  const RunSummary s = RunCase(Write(tmp.path(), CaseText()), o);
+  EXPECT_EQ(s.status, RunSummary::Status::kCompleted);
+  EXPECT_EQ(s.steps, 10);
+  EXPECT_TRUE(fs::exists(tmp / "out" / "fields.pvd"));
+  EXPECT_TRUE(fs::exists(tmp / "out" / "fields_000010.vtu"));
+  EXPECT_TRUE(fs::exists(tmp / "out" / "checkpoint.h5"));
+  data::H5Reader h(tmp / "out" / "history.h5");
+  EXPECT_EQ(h.Read("time").rows, 10u);
+  EXPECT_EQ(h.Read("forces/ymax/viscous").cols, 3u);
+  // The lid drags the fluid along +x, so the fluid pulls the lid back.
+  const data::Series fv = h.Read("forces/ymax/viscous");
+  EXPECT_LT(fv.at(9, 0), 0.0);
+  EXPECT_EQ(h.Read("residuals/p").units, "1");
+}
+
+TEST(CaseRunner, CliRunAndRestart) {
+  const fs::path kelvin = kelvin::testing::ToolsDir() / "kelvin";
+  if (!fs::exists(kelvin)) GTEST_SKIP() << "kelvin CLI not built";
+  kelvin::testing::ScopedTempDir tmp;
+  const fs::path c = Write(tmp.path(), CaseText(0.05, 0.25));
+  auto r = kelvin::testing::RunCommand(kelvin.string() + " run --no-progress " + c.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  // Continue from the checkpoint at t = 0.25 to t = 0.5.
+  const fs::path c2 = Write(tmp.path(), CaseText(0.05, 0.5));
+  r = kelvin::testing::RunCommand(kelvin.string() + " run --no-progress --restart " +
+                                  (tmp / "out" / "checkpoint.h5").string() + " -o " + (tmp / "out2").string() + " " +
+                                  c2.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("completed 5 steps to t = 0.5"), std::string::npos) << r.output;
+  r = kelvin::testing::RunCommand(kelvin.string() + " run " + (tmp / "missing.yaml").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+}
+
+TEST(CaseRunner, DivergenceStopsWithAStatusAndKeepsTheLastGoodCheckpoint) {
+  kelvin::testing::ScopedTempDir tmp;
+  // An absurd body force: the first steps give |U| ~ 1e151 (finite), then
+  // the products in the convective flux overflow.
+  std::string t = CaseText(0.05, 1.0);
+  t.replace(t.find("physics: {nu: 0.01}"), 19, "physics: {nu: 0.01, body_force: [1.0e153, 0, 0]}");
+  t.replace(t.find("checkpoint_interval: 5"), 22, "checkpoint_interval: 1");
+  RunOptions o;
+  o.progress = false;
+  const RunSummary s = RunCase(Write(tmp.path(), t), o);
+  ASSERT_EQ(s.status, RunSummary::Status::kDiverged) << s.message;
+  EXPECT_NE(s.message.find("diverged at step"), std::string::npos) << s.message;
+  EXPECT_LT(s.steps, 20);
+  ASSERT_GE(s.steps, 2) << s.message;
+  ASSERT_TRUE(fs::exists(tmp / "out" / "checkpoint.h5"));
+  data::H5Reader r(tmp / "out" / "checkpoint.h5");
+  EXPECT_EQ(r.NumberAttribute("/", "step"), s.steps - 1);
+  for (double v : r.Read("U").values) EXPECT_TRUE(std::isfinite(v));
+}
+
+}  // namespace
+}  // namespace kelvin::cfd
