@@ -7,6 +7,7 @@
 #include <random>
 #include <tuple>
 
+#include "cfd/mesh/mesh_builder.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -116,13 +117,9 @@ Mesh MakeBoxMesh(const BoxMeshOptions& opt) {
         return {point_id(i, j, k), point_id(i + 1, j, k), point_id(i + 1, j + 1, k), point_id(i, j + 1, k)};
     }
   };
-  struct InternalFace {
-    int owner;
-    int neighbour;
-    std::vector<int> pts;
-  };
-  std::vector<InternalFace> internal;
-  std::array<std::vector<std::pair<int, std::vector<int>>>, 6> boundary;
+  static const std::array<const char*, 6> kNames = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  MeshBuilder builder;
+  for (int p = 0; p < 6; ++p) builder.AddPatch(kNames[p], opt.kinds[p]);
   for (int d = 0; d < 3; ++d) {
     std::array<int, 3> ext = n;
     ext[d] += 1;
@@ -137,7 +134,7 @@ Mesh MakeBoxMesh(const BoxMeshOptions& opt) {
             if (plane == n[d]) cell_idx[d] -= 1;
             const int c = cell_of[lattice_id(cell_idx[0], cell_idx[1], cell_idx[2])];
             if (plane == 0) std::reverse(pts.begin(), pts.end());
-            boundary[2 * d + (plane == 0 ? 0 : 1)].emplace_back(c, std::move(pts));
+            builder.AddBoundaryFace(2 * d + (plane == 0 ? 0 : 1), c, std::move(pts));
             continue;
           }
           std::array<int, 3> below = lo;
@@ -145,50 +142,12 @@ Mesh MakeBoxMesh(const BoxMeshOptions& opt) {
           const int a = cell_of[lattice_id(below[0], below[1], below[2])];
           const int b = cell_of[lattice_id(lo[0], lo[1], lo[2])];
           if (a == b) continue;  // inside a block that is not split
-          if (a < b) {
-            internal.push_back({a, b, std::move(pts)});
-          } else {
-            std::reverse(pts.begin(), pts.end());
-            internal.push_back({b, a, std::move(pts)});
-          }
+          builder.AddInternalFace(a, b, std::move(pts));
         }
       }
     }
   }
-  std::stable_sort(internal.begin(), internal.end(), [](const InternalFace& x, const InternalFace& y) {
-    return std::tie(x.owner, x.neighbour) < std::tie(y.owner, y.neighbour);
-  });
-  std::vector<std::vector<int>> faces;
-  std::vector<int> owner, neighbour;
-  for (auto& f : internal) {
-    faces.push_back(std::move(f.pts));
-    owner.push_back(f.owner);
-    neighbour.push_back(f.neighbour);
-  }
-  static const std::array<const char*, 6> kNames = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
-  std::vector<Patch> patches;
-  for (int p = 0; p < 6; ++p) {
-    Patch patch{kNames[p], opt.kinds[p], static_cast<int>(faces.size()), static_cast<int>(boundary[p].size())};
-    for (auto& [c, pts] : boundary[p]) {
-      faces.push_back(std::move(pts));
-      owner.push_back(c);
-    }
-    patches.push_back(patch);
-  }
-  // Drop lattice points no face uses (centres of unsplit blocks).
-  std::vector<int> new_id(points.size(), -1);
-  std::vector<Vector3> used;
-  for (auto& f : faces) {
-    for (int& p : f) {
-      if (new_id[p] < 0) {
-        new_id[p] = static_cast<int>(used.size());
-        used.push_back(points[p]);
-      }
-      p = new_id[p];
-    }
-  }
-  return Mesh(std::move(used), std::move(faces), std::move(owner), std::move(neighbour), std::move(patches),
-              "<box mesh>");
+  return std::move(builder).Build(std::move(points), "<box mesh>");
 }
 
 }  // namespace kelvin::cfd

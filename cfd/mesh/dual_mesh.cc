@@ -8,6 +8,7 @@
 #include <random>
 #include <tuple>
 
+#include "cfd/mesh/mesh_builder.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -100,19 +101,12 @@ Mesh MakeDualMesh(const DualMeshOptions& opt) {
     for (std::size_t i = 0; i < f.size(); ++i) s += (points[f[i]] - c).cross(points[f[(i + 1) % f.size()]] - c);
     return Vector3(0.5 * s);
   };
-  struct Face {
-    int owner, neighbour;
-    std::vector<int> pts;
-  };
-  std::vector<Face> internal;
-  std::array<std::vector<std::pair<int, std::vector<int>>>, 6> boundary;
+  static const std::array<const char*, 6> kNames = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  MeshBuilder builder;
+  for (int s = 0; s < 6; ++s) builder.AddPatch(kNames[s], opt.kinds[s]);
   auto add_internal = [&](int a, int b, std::vector<int> f, const Vector3& a_to_b) {
     if (area(f).dot(a_to_b) < 0) std::reverse(f.begin(), f.end());
-    if (a > b) {
-      std::swap(a, b);
-      std::reverse(f.begin(), f.end());
-    }
-    internal.push_back({a, b, std::move(f)});
+    builder.AddInternalFace(a, b, std::move(f));
   };
   for (int k = 0; k < nz; ++k) {
     for (const auto& [e, ts] : edge_tris) {
@@ -132,7 +126,7 @@ Mesh MakeDualMesh(const DualMeshOptions& opt) {
         for (int v : {a, b}) {
           std::vector<int> f = {pid(v, k), pid(m, k), pid(m, k + 1), pid(v, k + 1)};
           if (area(f).dot(outward[s]) < 0) std::reverse(f.begin(), f.end());
-          boundary[s].emplace_back(cell(v, k), std::move(f));
+          builder.AddBoundaryFace(s, cell(v, k), std::move(f));
         }
       }
     }
@@ -166,35 +160,15 @@ Mesh MakeDualMesh(const DualMeshOptions& opt) {
       for (int p : polygon[v]) f.push_back(pid(p, k));  // counter-clockwise: normal +z
       if (k == 0) {
         std::reverse(f.begin(), f.end());
-        boundary[4].emplace_back(cell(v, 0), std::move(f));
+        builder.AddBoundaryFace(4, cell(v, 0), std::move(f));
       } else if (k == nz) {
-        boundary[5].emplace_back(cell(v, nz - 1), std::move(f));
+        builder.AddBoundaryFace(5, cell(v, nz - 1), std::move(f));
       } else {
-        internal.push_back({cell(v, k - 1), cell(v, k), std::move(f)});
+        builder.AddInternalFace(cell(v, k - 1), cell(v, k), std::move(f));
       }
     }
   }
-  std::stable_sort(internal.begin(), internal.end(), [](const Face& x, const Face& y) {
-    return std::tie(x.owner, x.neighbour) < std::tie(y.owner, y.neighbour);
-  });
-  std::vector<std::vector<int>> faces;
-  std::vector<int> owner, neighbour;
-  for (auto& f : internal) {
-    faces.push_back(std::move(f.pts));
-    owner.push_back(f.owner);
-    neighbour.push_back(f.neighbour);
-  }
-  static const std::array<const char*, 6> kNames = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
-  std::vector<Patch> patches;
-  for (int s = 0; s < 6; ++s) {
-    patches.push_back({kNames[s], opt.kinds[s], static_cast<int>(faces.size()), static_cast<int>(boundary[s].size())});
-    for (auto& [c, f] : boundary[s]) {
-      faces.push_back(std::move(f));
-      owner.push_back(c);
-    }
-  }
-  return Mesh(std::move(points), std::move(faces), std::move(owner), std::move(neighbour), std::move(patches),
-              "<dual mesh>");
+  return std::move(builder).Build(std::move(points), "<dual mesh>");
 }
 
 }  // namespace kelvin::cfd
