@@ -59,7 +59,7 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
       "2015).\n"
       "Forces / (0.5 rho L d U^2), moment / (0.5 rho L^2 d U^2), masses / (0.5 rho L^2 d),\n"
       "J_z / (0.5 rho L^4 d). The hull: section uses the keys of a ship file's hull: section;\n"
-      "the layout is the derivative-set contract of bridge/derivative_set.h.\n"
+      "the layout is the derivative-set contract of simulator/mmg/derivative_set.h.\n"
       "Standard errors are 1 sigma from ceres::Covariance; null = not estimated.");
   y << YAML::BeginMap;
   y << YAML::Key << "derivative_set" << YAML::Value << YAML::BeginMap;

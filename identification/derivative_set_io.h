@@ -1,5 +1,5 @@
 // Output of an identification: the derivative set as YAML for humans, in the
-// derivative-set layout the bridge loads (bridge/derivative_set.h:
+// derivative-set layout the bridge loads (simulator/mmg/derivative_set.h:
 // derivative_set, hull, standard_errors, fit; the `hull:` section has the
 // keys of a ship file's `hull:` section) and as HDF5 with the full covariance
 // and the measured and fitted forces of every run (for

@@ -19,6 +19,8 @@ namespace {
 using ::testing::HasSubstr;
 
 using sim::testing::Kvlcc2;
+using sim::DerivativeSet;
+using sim::LoadDerivativeSet;
 
 // A derivative file with the KVLCC2 hull, N_r replaced, and `check` text.
 std::filesystem::path WriteSet(const testing::ScopedTempDir& dir, const std::string& name, const std::string& check,

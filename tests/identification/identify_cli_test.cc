@@ -9,7 +9,7 @@
 #include <fstream>
 #include <limits>
 
-#include "bridge/derivative_set.h"
+#include "simulator/mmg/derivative_set.h"
 #include "data/schema/h5_file.h"
 #include "identification/captive_io.h"
 #include "identification/virtual_captive.h"
@@ -51,7 +51,7 @@ TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
         out["standard_errors"][std::string(sim::HullCoefficients<double>::kNames[i])].IsDefined());
   }
   // The bridge streams it as a derivative set (unchecked against CFD so far).
-  const bridge::DerivativeSet set = bridge::LoadDerivativeSet(dir / "kvlcc2_derivatives.yaml");
+  const sim::DerivativeSet set = sim::LoadDerivativeSet(dir / "kvlcc2_derivatives.yaml");
   for (int i = 0; i < sim::HullCoefficients<double>::kCount; ++i) {
     EXPECT_EQ(set.hull[i], identified.hull[i]) << sim::HullCoefficients<double>::kNames[i];
   }

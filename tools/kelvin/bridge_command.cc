@@ -63,9 +63,9 @@ const char* StatusName(bridge::BridgeStatus s) {
 
 void RunBridge(BridgeArgs& a) {
   sim::ShipParameters ship = sim::LoadShip(a.ship_file);
-  std::optional<bridge::DerivativeSet> set;
+  std::optional<sim::DerivativeSet> set;
   if (!a.derivatives.empty()) {
-    set = bridge::LoadDerivativeSet(a.derivatives);
+    set = sim::LoadDerivativeSet(a.derivatives);
     ship.hull = set->hull;
     ship.Validate(a.derivatives);
   }

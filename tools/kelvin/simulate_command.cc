@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "bridge/derivative_set.h"
+#include "simulator/mmg/derivative_set.h"
 #include "data/schema/errors.h"
 #include "simulator/maneuvers/runner.h"
 #include "tools/kelvin/commands.h"
@@ -39,7 +39,7 @@ std::string FileStem(const std::string& ship, const std::string& maneuver) {
 void RunSimulate(const SimulateArgs& a) {
   sim::ShipParameters ship = sim::LoadShip(a.ship_file);
   if (!a.derivatives.empty()) {
-    const bridge::DerivativeSet set = bridge::LoadDerivativeSet(a.derivatives);
+    const sim::DerivativeSet set = sim::LoadDerivativeSet(a.derivatives);
     ship.hull = set.hull;
     ship.Validate(a.derivatives);
     spdlog::info("hull derivatives and added masses from {} ({})", a.derivatives, set.name);

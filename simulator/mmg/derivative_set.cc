@@ -1,0 +1,43 @@
+#include "simulator/mmg/derivative_set.h"
+
+#include <cmath>
+#include <vector>
+
+#include "data/schema/config.h"
+#include "data/schema/errors.h"
+
+namespace kelvin::sim {
+
+DerivativeSet LoadDerivativeSet(const std::filesystem::path& path) {
+  const data::ConfigNode root = data::ConfigNode::LoadFile(path);
+  if (!root.IsMap()) root.Fail("a derivative set (a map with a 'hull' section)");
+  // The sections `kelvin identify` writes (identification/derivative_set_io.h),
+  // and the check.
+  root.ExpectKeys({"derivative_set", "hull", "standard_errors", "fit", "check"});
+  DerivativeSet set;
+  set.file = path.string();
+  if (const auto meta = root.Find("derivative_set")) {
+    meta->ExpectKeys({"name", "ship", "source"});
+    set.name = meta->Get<std::string>("name", "");
+  }
+  const data::ConfigNode hull = root["hull"];
+  std::vector<std::string> names;
+  for (const auto& n : HullCoefficients<double>::kNames) names.emplace_back(n);
+  hull.ExpectKeys(names);
+  for (int i = 0; i < HullCoefficients<double>::kCount; ++i) {
+    set.hull[i] = hull.Get<double>(names[static_cast<std::size_t>(i)]);
+    if (!std::isfinite(set.hull[i])) hull[names[static_cast<std::size_t>(i)]].Fail("a finite number");
+  }
+  if (const auto check = root.Find("check")) {
+    check->ExpectKeys({"passed", "reference", "date", "summary"});
+    DerivativeCheck c;
+    c.passed = check->Get<bool>("passed");
+    c.reference = check->Get<std::string>("reference", "");
+    c.date = check->Get<std::string>("date", "");
+    c.summary = check->Get<std::string>("summary", "");
+    set.check = c;
+  }
+  return set;
+}
+
+}  // namespace kelvin::sim
