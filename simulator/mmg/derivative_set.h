@@ -6,8 +6,8 @@
 //
 //   derivative_set: {name: ..., ship: ..., source: ...}
 //   hull: {R0_prime: ..., ..., J_z_prime: ...}   # all 20, as in ship files
-//   standard_errors: {...}                       # not read by the bridge
-//   fit: {...}                                   # not read by the bridge
+//   standard_errors: {...}                       # informative, not read here
+//   fit: {...}                                   # informative, not read here
 //   check: {passed: true|false, reference: ..., date: ..., summary: ...}
 //
 // The hull section of a published ship file is a reference set: it was not
