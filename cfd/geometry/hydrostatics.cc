@@ -168,13 +168,16 @@ TriangleSurface LoadHull(const HullPlacement& p, SurfaceCheck* check) {
   return s;
 }
 
+double WigleyHalfBeam(double L, double B, double T, double x, double z) {
+  const double xi = 2.0 * (x - 0.5 * L) / L, zeta = z / T;
+  const double bx = std::abs(xi) >= 1.0 ? 0.0 : 0.5 * B * (1.0 - xi * xi);
+  return bx * (1.0 - zeta * zeta);
+}
+
 TriangleSurface WigleySurface(double L, double B, double T, double freeboard, int nx, int nz) {
   TriangleSurface s;
   s.source = fmt::format("Wigley hull L={} B={} T={}", L, B, T);
-  auto half_beam = [&](double x, double z) {
-    const double xi = 2.0 * (x - 0.5 * L) / L, zeta = z / T;
-    return 0.5 * B * (1 - xi * xi) * (1 - zeta * zeta);
-  };
+  auto half_beam = [&](double x, double z) { return WigleyHalfBeam(L, B, T, x, z); };
   // Vertex grid on each side; the keel (z = -T) and the ends (x = 0, L)
   // have zero half-beam and are shared by both sides.
   std::vector<int> port((nx + 1) * (nz + 1)), stbd((nx + 1) * (nz + 1));

@@ -63,6 +63,10 @@ HullPlacement LoadHullPlacement(const std::filesystem::path& ship_file);
 // from the waterline), then validates it as a hull.
 TriangleSurface LoadHull(const HullPlacement& placement, SurfaceCheck* check = nullptr);
 
+// Half-beam of the Wigley hull y = (B/2)(1 - (2x/L - 1)^2)(1 - (z/T)^2) at x
+// from AP; 0 outside 0 < x < L. Not limited in z: callers decide the range.
+double WigleyHalfBeam(double L, double B, double T, double x, double z);
+
 // The Wigley parabolic hull y = (B/2)(1 - (2x/L)^2)(1 - (z/T)^2), closed by a
 // flat deck at z = freeboard, with nx x nz panels per side; x from AP.
 TriangleSurface WigleySurface(double L, double B, double T, double freeboard, int nx, int nz);

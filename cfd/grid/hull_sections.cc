@@ -20,13 +20,11 @@ WigleySections::WigleySections(double L, double B, double T) : L_(L), B_(B), T_(
 
 std::vector<std::array<double, 2>> WigleySections::Breadths(double x,
                                                             std::span<const double> z) const {
-  const double xi = 2.0 * (x - 0.5 * L_) / L_;
-  const double bx = (std::abs(xi) >= 1.0) ? 0.0 : 0.5 * B_ * (1.0 - xi * xi);
   std::vector<std::array<double, 2>> out(z.size(), {0.0, 0.0});
   for (std::size_t j = 0; j < z.size(); ++j) {
     const double zeta = z[j] / T_;
     if (zeta > 0.0 || zeta < -1.0) continue;
-    const double y = bx * (1.0 - zeta * zeta);
+    const double y = WigleyHalfBeam(L_, B_, T_, x, z[j]);
     out[j] = {-y, y};
   }
   return out;
