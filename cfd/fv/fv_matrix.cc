@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "data/schema/errors.h"
+
 namespace kelvin::cfd {
 
 template <typename T>
@@ -178,9 +180,12 @@ void AddConvection(FvMatrix<T>& m, const CellField<T>& field, std::span<const do
   }
 }
 
-template <typename T>
-void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const NonOrthGeometry& geo,
-                  const std::vector<GradType<T>>* grad) {
+namespace {
+
+// -div(gamma_f grad phi) with the face diffusivity from `gamma(f)`.
+template <typename T, typename Gamma>
+void LaplacianImpl(FvMatrix<T>& m, const CellField<T>& field, const Gamma& gamma, const NonOrthGeometry& geo,
+                   const std::vector<GradType<T>>* grad) {
   const Mesh& mesh = m.mesh();
   const int ni = mesh.n_internal_faces();
   const auto owner = mesh.owner();
@@ -189,14 +194,15 @@ void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const
   const auto w = mesh.weights();
   if (!geo.any_correction) grad = nullptr;
   for (int f = 0; f < ni; ++f) {
-    const double a = gamma * mag[f] * geo.delta_coeffs[f];
+    const double gf = gamma(f);
+    const double a = gf * mag[f] * geo.delta_coeffs[f];
     m.diag[owner[f]] += a;
     m.diag[neighbour[f]] += a;
     m.upper[f] -= a;
     m.lower[f] -= a;
     if (grad) {
       const GradType<T> g = w[f] * (*grad)[owner[f]] + (1.0 - w[f]) * (*grad)[neighbour[f]];
-      const T corr = gamma * mag[f] * Dot(g, geo.correction[f]);
+      const T corr = gf * mag[f] * Dot(g, geo.correction[f]);
       m.source[owner[f]] += corr;
       m.source[neighbour[f]] -= corr;
     }
@@ -206,8 +212,9 @@ void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const
     const auto& bc = field.bc(p);
     for (int i = 0; i < patch.size; ++i) {
       const int f = patch.start + i;
-      m.internal_coeffs[f - ni] -= gamma * mag[f] * bc.gradient_internal()[i];
-      m.boundary_coeffs[f - ni] += gamma * mag[f] * bc.gradient_boundary()[i];
+      const double gf = gamma(f);
+      m.internal_coeffs[f - ni] -= gf * mag[f] * bc.gradient_internal()[i];
+      m.boundary_coeffs[f - ni] += gf * mag[f] * bc.gradient_boundary()[i];
       if (grad) {
         // Skewed wall cell: the part of dc (phi_b - phi_P) along the face,
         // weighted by how much the condition fixes the value (-gi / dc).
@@ -215,9 +222,65 @@ void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const
         const double dc = 1.0 / std::max(n_dot_d, 0.05 * mesh.deltas()[f].norm());
         const T fraction = -bc.gradient_internal()[i] / dc;
         const T tangential = Dot((*grad)[owner[f]], geo.boundary_correction[f - ni]);
-        m.source[owner[f]] += gamma * mag[f] * Traits<T>::Mul(fraction, tangential);
+        m.source[owner[f]] += gf * mag[f] * Traits<T>::Mul(fraction, tangential);
       }
     }
+  }
+}
+
+}  // namespace
+
+template <typename T>
+void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const NonOrthGeometry& geo,
+                  const std::vector<GradType<T>>* grad) {
+  LaplacianImpl(m, field, [gamma](int) { return gamma; }, geo, grad);
+}
+
+template <typename T>
+void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, std::span<const double> gamma_faces,
+                  const NonOrthGeometry& geo, const std::vector<GradType<T>>* grad) {
+  KELVIN_CHECK(static_cast<int>(gamma_faces.size()) == m.mesh().n_faces(), "one diffusivity per face");
+  LaplacianImpl(m, field, [gamma_faces](int f) { return gamma_faces[f]; }, geo, grad);
+}
+
+void AddImplicitSource(FvMatrix<double>& m, std::span<const double> coeff_per_volume) {
+  const auto vol = m.mesh().cell_volumes();
+  for (int c = 0; c < m.mesh().n_cells(); ++c) m.diag[c] += vol[c] * coeff_per_volume[c];
+}
+
+void SetCellValues(FvMatrix<double>& m, std::span<const int> cells, std::span<const double> values) {
+  const Mesh& mesh = m.mesh();
+  const int ni = mesh.n_internal_faces();
+  std::vector<char> fixed(mesh.n_cells(), 0);
+  std::vector<double> value(mesh.n_cells(), 0.0);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    fixed[cells[i]] = 1;
+    value[cells[i]] = values[i];
+  }
+  for (int f = 0; f < ni; ++f) {
+    const int P = mesh.owner()[f], N = mesh.neighbour()[f];
+    if (fixed[P]) {
+      // Row P loses its coupling; row N sees a known value.
+      if (!fixed[N]) m.source[N] -= m.lower[f] * value[P];
+      m.upper[f] = 0.0;
+      m.lower[f] = 0.0;
+    }
+    if (fixed[N]) {
+      if (!fixed[P]) m.source[P] -= m.upper[f] * value[N];
+      m.upper[f] = 0.0;
+      m.lower[f] = 0.0;
+    }
+  }
+  for (int f = ni; f < mesh.n_faces(); ++f) {
+    if (fixed[mesh.owner()[f]]) {
+      m.internal_coeffs[f - ni] = 0.0;
+      m.boundary_coeffs[f - ni] = 0.0;
+    }
+  }
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    if (!fixed[c]) continue;
+    if (!(m.diag[c] > 0.0)) m.diag[c] = 1.0;
+    m.source[c] = m.diag[c] * value[c];
   }
 }
 
@@ -239,6 +302,10 @@ template void AddLaplacian(FvMatrix<double>&, const CellField<double>&, double, 
                            const std::vector<Vector3>*);
 template void AddLaplacian(FvMatrix<Vector3>&, const CellField<Vector3>&, double, const NonOrthGeometry&,
                            const std::vector<Matrix3>*);
+template void AddLaplacian(FvMatrix<double>&, const CellField<double>&, std::span<const double>,
+                           const NonOrthGeometry&, const std::vector<Vector3>*);
+template void AddLaplacian(FvMatrix<Vector3>&, const CellField<Vector3>&, std::span<const double>,
+                           const NonOrthGeometry&, const std::vector<Matrix3>*);
 template void AddSource(FvMatrix<double>&, std::span<const double>);
 template void AddSource(FvMatrix<Vector3>&, std::span<const Vector3>);
 

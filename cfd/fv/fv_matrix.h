@@ -75,6 +75,21 @@ template <typename T>
 void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const NonOrthGeometry& geo,
                   const std::vector<GradType<T>>* grad);
 
+// The same with one diffusivity per face (all faces, boundary ones included:
+// wall functions put the wall eddy viscosity there).
+template <typename T>
+void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, std::span<const double> gamma_faces,
+                  const NonOrthGeometry& geo, const std::vector<GradType<T>>* grad);
+
+// Implicit linear source: + coeff * phi per unit volume on the left-hand side
+// (coeff >= 0 keeps the matrix diagonally dominant: destruction terms).
+void AddImplicitSource(FvMatrix<double>& m, std::span<const double> coeff_per_volume);
+
+// Fixes the solution in `cells` to `values` (OpenFOAM's setValues): the rows
+// keep their diagonal and lose their couplings, and the neighbours see the
+// fixed values as known sources. Used for omega in wall cells.
+void SetCellValues(FvMatrix<double>& m, std::span<const int> cells, std::span<const double> values);
+
 // Explicit source per unit volume (moved to the right-hand side times V).
 template <typename T>
 void AddSource(FvMatrix<T>& m, std::span<const T> per_volume);

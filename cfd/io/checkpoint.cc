@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <string>
+
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 
@@ -50,6 +53,14 @@ void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solv
       w.WriteArray(fmt::format("bc/{}", b), s.bc_state[b], {s.bc_state[b].size()}, "", "boundary condition state");
     }
   }
+  if (!s.turbulence.empty()) {
+    std::string names;
+    for (const auto& [name, values] : s.turbulence) {
+      names += (names.empty() ? "" : ",") + name;
+      w.WriteArray("turbulence/" + name, values, {values.size()}, "", "turbulence model state");
+    }
+    w.SetAttribute("/", "turbulence_arrays", names);
+  }
   w.Commit();
 }
 
@@ -77,7 +88,21 @@ void ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver) {
     const std::string name = fmt::format("bc/{}", b);
     s.bc_state.push_back(r.Has(name) ? r.Read(name).values : std::vector<double>{});
   }
-  solver.SetState(s);
+  if (r.HasAttribute("/", "turbulence_arrays")) {
+    const std::string names = r.StringAttribute("/", "turbulence_arrays");
+    std::size_t start = 0;
+    while (start <= names.size()) {
+      const std::size_t end = std::min(names.find(',', start), names.size());
+      const std::string name = names.substr(start, end - start);
+      if (!name.empty()) s.turbulence.emplace_back(name, r.Read("turbulence/" + name).values);
+      start = end + 1;
+    }
+  }
+  try {
+    solver.SetState(s);
+  } catch (const DataFileError& e) {
+    throw DataFileError(fmt::format("{}: {}", path.string(), e.what()));
+  }
 }
 
 }  // namespace kelvin::cfd

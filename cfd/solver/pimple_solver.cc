@@ -71,6 +71,11 @@ void PimpleSolver::SetMeshFlux(std::vector<double> mesh_flux) {
   mesh_flux_ = std::move(mesh_flux);
 }
 
+void PimpleSolver::SetTurbulence(std::unique_ptr<TurbulenceModel> model) {
+  turbulence_ = std::move(model);
+  if (initialized_ && turbulence_) turbulence_->Initialize(*U_, RelativeFlux());
+}
+
 std::span<const double> PimpleSolver::RelativeFlux() {
   flux_rel_.resize(phi_.size());
   for (std::size_t f = 0; f < phi_.size(); ++f) flux_rel_[f] = phi_[f] - mesh_flux_[f];
@@ -89,6 +94,7 @@ void PimpleSolver::Initialize() {
   for (int f = ni; f < mesh_.n_faces(); ++f) phi_[f] = U_->boundary()[f - ni].dot(sf[f]);
   U_->CorrectBoundary(time_, RelativeFlux());
   p_->CorrectBoundary(time_, RelativeFlux());
+  if (turbulence_) turbulence_->Initialize(*U_, RelativeFlux());
   initialized_ = true;
 }
 
@@ -97,7 +103,27 @@ void PimpleSolver::AssembleMomentum(double dt, std::span<const double> flux_rel)
   AddDdt(UEqn_, *U_, dt, schemes_.time);
   grad_.Compute(std::span<const Vector3>(U_->values()), std::span<const Vector3>(U_->boundary()), grad_U_);
   AddConvection(UEqn_, *U_, flux_rel, schemes_.convection, grad_U_);
-  AddLaplacian(UEqn_, *U_, physics_.nu, non_orth_, non_orth_correction_ ? &grad_U_ : nullptr);
+  if (!turbulence_) {
+    AddLaplacian(UEqn_, *U_, physics_.nu, non_orth_, non_orth_correction_ ? &grad_U_ : nullptr);
+  } else {
+    const std::vector<double>& nu_eff = turbulence_->nu_eff_faces();
+    AddLaplacian(UEqn_, *U_, std::span<const double>(nu_eff), non_orth_, non_orth_correction_ ? &grad_U_ : nullptr);
+    // div(nu_eff dev2(grad(U)^T)): with J(i, j) = du_i/dx_j the face flux of
+    // the transposed gradient is (J^T - 2/3 tr(J) I) S_f.
+    const int ni = mesh_.n_internal_faces();
+    const auto w = mesh_.weights();
+    const auto sf = mesh_.face_areas();
+    auto transposed = [&](const Matrix3& J, int f) -> Vector3 {
+      return nu_eff[f] * (J.transpose() * sf[f] - (2.0 / 3.0) * J.trace() * sf[f]);
+    };
+    for (int f = 0; f < ni; ++f) {
+      const int P = mesh_.owner()[f], N = mesh_.neighbour()[f];
+      const Vector3 t = transposed(w[f] * grad_U_[P] + (1.0 - w[f]) * grad_U_[N], f);
+      UEqn_.source[P] += t;
+      UEqn_.source[N] -= t;
+    }
+    for (int f = ni; f < mesh_.n_faces(); ++f) UEqn_.source[mesh_.owner()[f]] += transposed(grad_U_[mesh_.owner()[f]], f);
+  }
   if (physics_.source) {
     source_.resize(mesh_.n_cells());
     for (int c = 0; c < mesh_.n_cells(); ++c) source_[c] = physics_.source(mesh_.cell_centres()[c], time_);
@@ -360,6 +386,14 @@ StepSummary PimpleSolver::Step(double dt) {
     }
     summary.outer_iterations = outer + 1;
     if (!std::isfinite(res_U)) summary.finite = false;
+    if (final_outer && turbulence_) {
+      grad_.Compute(std::span<const Vector3>(U_->values()), std::span<const Vector3>(U_->boundary()), grad_U_);
+      turbulence_summary_ = turbulence_->Correct(TurbulenceInputs{*U_, grad_U_, RelativeFlux(), dt, time_});
+      if (!std::isfinite(turbulence_summary_.initial_residual_k) ||
+          !std::isfinite(turbulence_summary_.initial_residual_omega)) {
+        summary.finite = false;
+      }
+    }
     if (final_outer) {
       summary.outer_converged = converged || pimple_.n_outer == 1;
       break;
@@ -401,6 +435,7 @@ PimpleSolver::State PimpleSolver::GetState() const {
   s.phi_old = phi_old_;
   for (int p = 0; p < U_->n_patches(); ++p) s.bc_state.push_back(U_->bc(p).State());
   for (int p = 0; p < p_->n_patches(); ++p) s.bc_state.push_back(p_->bc(p).State());
+  if (turbulence_) s.turbulence = turbulence_->State();
   return s;
 }
 
@@ -418,6 +453,12 @@ void PimpleSolver::SetState(const State& s) {
   initialized_ = true;
   U_->CorrectBoundary(time_, RelativeFlux());
   p_->CorrectBoundary(time_, RelativeFlux());
+  if (turbulence_) {
+    if (s.turbulence.empty()) throw DataFileError("the checkpoint has no turbulence state; the case uses a turbulence model");
+    turbulence_->SetState(s.turbulence);
+  } else if (!s.turbulence.empty()) {
+    throw DataFileError("the checkpoint has a turbulence state; the case is laminar");
+  }
 }
 
 }  // namespace kelvin::cfd

@@ -20,6 +20,7 @@
 #include "cfd/fv/gradient.h"
 #include "cfd/fv/schemes.h"
 #include "cfd/linalg/linear_solver.h"
+#include "cfd/turbulence/turbulence_model.h"
 
 namespace kelvin::cfd {
 
@@ -97,6 +98,18 @@ class PimpleSolver {
   const std::vector<double>& flux() const { return phi_; }
   // Mesh-motion hook: F_mesh on every face (m^3/s).
   void SetMeshFlux(std::vector<double> mesh_flux);
+  // RANS closure (null: laminar). The momentum equation then uses the
+  // model's face viscosities nu + nu_t (with the wall-function values on
+  // walls) and the explicit div(nu_eff dev2(grad(U)^T)) term; the model is
+  // corrected once per time step after the final outer iteration.
+  void SetTurbulence(std::unique_ptr<TurbulenceModel> model);
+  TurbulenceModel* turbulence() { return turbulence_.get(); }
+  const TurbulenceModel* turbulence() const { return turbulence_.get(); }
+  // Effective viscosity nu (+ nu_t) on face f (m^2/s): what the momentum
+  // equation uses, so wall shear forces computed from it are consistent.
+  double FaceViscosity(int f) const { return turbulence_ ? turbulence_->nu_eff_faces()[f] : physics_.nu; }
+  // The model's summary of the last step (zeros when laminar).
+  const TurbulenceSummary& turbulence_summary() const { return turbulence_summary_; }
   const PimpleOptions& options() const { return pimple_; }
 
   // Full state for checkpoints: continuing from a restored state gives the
@@ -111,6 +124,7 @@ class PimpleSolver {
     std::vector<double> phi;
     std::vector<std::vector<double>> phi_old;
     std::vector<std::vector<double>> bc_state;  // per U patch then per p patch
+    std::vector<std::pair<std::string, std::vector<double>>> turbulence;  // the model's named arrays
   };
   State GetState() const;
   void SetState(const State& state);
@@ -159,6 +173,8 @@ class PimpleSolver {
   std::vector<Vector3> skew_;  // internal faces, only with skew correction
   std::vector<Vector3> grad_p_;
   std::vector<Vector3> source_;
+  std::unique_ptr<TurbulenceModel> turbulence_;
+  TurbulenceSummary turbulence_summary_;
 };
 
 }  // namespace kelvin::cfd

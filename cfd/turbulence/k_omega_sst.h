@@ -1,0 +1,138 @@
+// Menter's k-omega SST model in its 2003 form (Menter, Kuntz and Langtry,
+// "Ten years of industrial experience with the SST turbulence model",
+// Turbulence, Heat and Mass Transfer 4, 2003; the "SST-2003" variant of
+// NASA's Turbulence Modeling Resource):
+//
+//   dk/dt + div(U k) = P~ - beta* omega k + div((nu + sigma_k nu_t) grad k)
+//   domega/dt + div(U omega) = gamma P~ / nu_t - beta omega^2
+//       + div((nu + sigma_w nu_t) grad omega) + 2 (1 - F1) sigma_w2 grad k . grad omega / omega
+//   nu_t = a1 k / max(a1 omega, S F2),   S = sqrt(2 S_ij S_ij)  (strain-based limiter)
+//   P~ = min(nu_t S^2, 10 beta* k omega)                     (production limiter)
+//
+// with the F1 blending of the constants (sigma_k, sigma_w, beta, gamma) and
+// the F2 blending of the nu_t limiter. The omega production uses the limited
+// P~ (gamma P~ / nu_t = gamma min(S^2, 10 beta* k omega / nu_t)), which keeps
+// the two equations consistent in stagnation regions.
+//
+// Discretization (segregated, once per time step after the PISO correctors):
+// Euler or backward in time, bounded convection (upwind, or the van Leer TVD
+// scheme) written as div(F phi) - div(F) phi so that a not fully converged
+// continuity cannot create or destroy k or omega, destruction terms and the
+// negative part of the cross diffusion implicit, the positive parts
+// explicit. The matrices are then M-matrices with non-negative sources, so
+// k and omega stay positive; a bound step still checks every cell and
+// counts (and the run reports) any cell it had to lift to the floor.
+//
+// Walls: Spalding's law gives u_tau and the wall eddy viscosity at any y+
+// (wall_functions.h); omega in the wall cells is fixed to the blended
+// viscous/log value; k has zero gradient at the wall; in log-layer wall
+// cells (y+ above the linear/log intersection) the k production is the
+// wall-function value u_tau^2 * Cmu^0.25 sqrt(k) / (kappa y).
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cfd/fv/fv_matrix.h"
+#include "cfd/fv/schemes.h"
+#include "cfd/linalg/linear_solver.h"
+#include "cfd/turbulence/turbulence_model.h"
+#include "cfd/turbulence/wall_functions.h"
+
+namespace kelvin::cfd {
+
+// What the model does on each patch (the case runner derives it from the
+// velocity condition).
+enum class TurbulencePatchRole {
+  kInflow,    // fixed k and omega from the inflow turbulence
+  kOutflow,   // inflow values where the flux enters, zero gradient where it leaves
+  kWall,      // wall functions / low-Re wall treatment
+  kSymmetry,  // zero gradient (slip walls, symmetry planes, the free surface)
+  kEmpty,     // front and back of 2D meshes
+};
+
+struct InflowTurbulence {
+  double intensity = 0.01;        // I = sqrt(2k/3) / U_ref
+  double viscosity_ratio = 5.0;   // nu_t / nu
+  double reference_speed = 1.0;   // U_ref (m/s)
+  double k(double) const;                 // m^2/s^2
+  double omega(double nu) const;          // 1/s
+  void Validate() const;
+};
+
+struct KOmegaSstOptions {
+  // Model constants (set 1 inner, set 2 outer).
+  double beta_star = 0.09;
+  double a1 = 0.31;
+  double sigma_k1 = 0.85, sigma_k2 = 1.0;
+  double sigma_w1 = 0.5, sigma_w2 = 0.856;
+  double beta1 = 0.075, beta2 = 0.0828;
+  double gamma1 = 5.0 / 9.0, gamma2 = 0.44;
+  double production_limit = 10.0;  // c1 of the production limiter
+  WallLaw wall_law;
+  InflowTurbulence inflow;
+  ConvectionScheme convection = ConvectionScheme::kUpwind;  // upwind or limited (bounded)
+  TimeScheme time = TimeScheme::kEuler;
+  double relax = 1.0;  // implicit under-relaxation of k and omega (pseudo-transient runs)
+  LinearSolverOptions solver;
+  void Validate() const;
+};
+
+class KOmegaSst : public TurbulenceModel {
+ public:
+  // `roles` has one entry per mesh patch. nu in m^2/s.
+  KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std::vector<TurbulencePatchRole> roles,
+            const std::vector<std::string>& patch_names_for_errors = {});
+
+  std::string name() const override { return "kOmegaSST"; }
+  void Initialize(const VectorField& U, std::span<const double> flux) override;
+  TurbulenceSummary Correct(const TurbulenceInputs& in) override;
+  const std::vector<double>& nu_eff_faces() const override { return nu_eff_faces_; }
+  const std::vector<double>& nu_t() const override { return nut_; }
+  const std::vector<Vector3>& wall_shear_stress() const override { return tau_w_; }
+  const std::vector<double>& y_plus() const override { return y_plus_; }
+  std::vector<WallPatchStats> WallStats() const override;
+  std::vector<TurbulenceOutput> CellOutputs() const override;
+  std::vector<std::pair<std::string, std::vector<double>>> State() const override;
+  void SetState(const std::vector<std::pair<std::string, std::vector<double>>>& state) override;
+
+  const ScalarField& k() const { return *k_; }
+  const ScalarField& omega() const { return *omega_; }
+  ScalarField& k() { return *k_; }
+  ScalarField& omega() { return *omega_; }
+  const std::vector<double>& wall_distance() const { return y_; }
+  const std::vector<double>& F1() const { return F1_; }
+
+ private:
+  // Wall shear, y+, u_tau per wall face and the wall-cell omega, from U.
+  void UpdateWall(const VectorField& U);
+  // nu_t in the cells from k, omega, S and F2; then the face viscosities.
+  void UpdateViscosity();
+  // Solves one transport equation; returns the initial residual.
+  double Solve(ScalarField& field, FvMatrix<double>& m, int& bounded, double floor, int& iterations);
+
+  const Mesh& mesh_;
+  double nu_;
+  KOmegaSstOptions opt_;
+  std::vector<TurbulencePatchRole> roles_;
+  std::unique_ptr<ScalarField> k_, omega_;
+  std::vector<double> nut_, y_, F1_, F2_, S2_;
+  std::vector<double> nu_eff_faces_;
+  std::vector<Vector3> tau_w_;
+  std::vector<double> y_plus_, u_tau_, nut_wall_;
+  // Wall cells and their fixed omega (averaged over their wall faces).
+  std::vector<int> wall_cells_;
+  std::vector<double> wall_cell_omega_;
+  std::vector<double> wall_cell_production_;  // -1: use the cell production
+  NonOrthGeometry geo_;
+  Gradient grad_;
+  SparseSystem system_;
+  std::unique_ptr<LinearSolver> solver_;
+  double k_floor_ = 0.0, omega_floor_ = 0.0;
+  bool initialized_ = false;
+};
+
+}  // namespace kelvin::cfd

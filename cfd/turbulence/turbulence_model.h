@@ -1,0 +1,76 @@
+// Interface between the PIMPLE solver and a RANS turbulence model
+// (architecture: the turbulenceCorrector stage). The solver asks for the
+// effective viscosity nu + nu_t on every face (on walls: the wall-function
+// value that carries the wall shear stress) and calls Correct() after the
+// pressure correctors of each time step with the current velocity, its
+// gradient and the relative face flux.
+#pragma once
+
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cfd/field/field.h"
+#include "cfd/fv/gradient.h"
+
+namespace kelvin::cfd {
+
+struct TurbulenceInputs {
+  const VectorField& U;
+  const std::vector<Matrix3>& grad_U;  // J(i, j) = du_i / dx_j per cell
+  std::span<const double> flux;        // relative volume flux F - F_mesh on every face (m^3/s)
+  double dt = 0.0;                     // s
+  double time = 0.0;                   // s
+};
+
+struct TurbulenceSummary {
+  double initial_residual_k = 0.0;
+  double initial_residual_omega = 0.0;
+  int iterations = 0;
+  // Cells whose value the bound step lifted to the floor after a solve (a
+  // non-zero count is reported; with bounded convection it stays zero).
+  int bounded_k = 0;
+  int bounded_omega = 0;
+};
+
+// y+ and wall shear statistics of one wall patch.
+struct WallPatchStats {
+  std::string patch;
+  double y_plus_min = 0.0;
+  double y_plus_mean = 0.0;  // area weighted
+  double y_plus_max = 0.0;
+};
+
+// A cell field for output (VTK): components 1 or 3, n_cells * components values.
+struct TurbulenceOutput {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
+
+class TurbulenceModel {
+ public:
+  virtual ~TurbulenceModel() = default;
+  virtual std::string name() const = 0;
+  // Computes nu_t and the wall quantities from the initial fields.
+  virtual void Initialize(const VectorField& U, std::span<const double> flux) = 0;
+  virtual TurbulenceSummary Correct(const TurbulenceInputs& in) = 0;
+  // nu + nu_t on every face (m^2/s).
+  virtual const std::vector<double>& nu_eff_faces() const = 0;
+  // Turbulent viscosity per cell (m^2/s).
+  virtual const std::vector<double>& nu_t() const = 0;
+  // Kinematic wall shear stress vector per boundary face (index face -
+  // n_internal_faces; zero off the walls), m^2/s^2, acting on the wall.
+  virtual const std::vector<Vector3>& wall_shear_stress() const = 0;
+  // y+ per boundary face (zero off the walls).
+  virtual const std::vector<double>& y_plus() const = 0;
+  virtual std::vector<WallPatchStats> WallStats() const = 0;
+  // Cell fields for output (k, omega, nu_t; y+ and wall shear in wall cells).
+  virtual std::vector<TurbulenceOutput> CellOutputs() const = 0;
+  // Full state for checkpoints (named arrays) and its restore.
+  virtual std::vector<std::pair<std::string, std::vector<double>>> State() const = 0;
+  virtual void SetState(const std::vector<std::pair<std::string, std::vector<double>>>& state) = 0;
+};
+
+}  // namespace kelvin::cfd
