@@ -44,7 +44,7 @@ double MotionOptions::EndTime() const {
 
 void MotionOptions::Validate() const {
   auto fail = [](std::string_view key, double value, std::string_view expected) {
-    throw ConfigError(fmt::format("motion.{} = {}: expected {}", key, value, expected));
+    throw ConfigError(fmt::format("motion.{} = {:.6g}: expected {}", key, value, expected));
   };
   if (!(speed > 0.0) || !std::isfinite(speed)) fail("speed", speed, "a finite carriage speed > 0 m/s");
   if (!(ramp_time >= 0.0) || !std::isfinite(ramp_time)) fail("ramp_time", ramp_time, "a finite time >= 0 s");
@@ -114,7 +114,7 @@ MotionOptions LoadMotionOptions(const data::ConfigNode& node) {
   try {
     o.Validate();
   } catch (const ConfigError& e) {
-    node.Fail(e.what());
+    throw ConfigError(fmt::format("{}: {}", node.Where(), e.what()));
   }
   return o;
 }
