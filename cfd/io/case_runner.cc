@@ -159,12 +159,16 @@ std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n, 
     n.ExpectKeys({"type", "inflow"});
     return std::make_unique<InletOutlet<Vector3>>(GetVector(n, "inflow"));
   }
+  if (type == "farField") {
+    n.ExpectKeys({"type", "inflow", "band"});
+    return std::make_unique<FarField<Vector3>>(GetVector(n, "inflow"), true, n.GetPositive("band"));
+  }
   if (type == "empty") {
     n.ExpectKeys({"type"});
     return std::make_unique<Empty<Vector3>>();
   }
   n["type"].Fail(
-      "one of fixedValue, noSlip, movingWall, movingWallVelocity, zeroGradient, slip, inletOutlet, empty");
+      "one of fixedValue, noSlip, movingWall, movingWallVelocity, zeroGradient, slip, inletOutlet, farField, empty");
 }
 
 std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n) {
@@ -181,6 +185,10 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n) {
     n.ExpectKeys({"type", "value"});
     return std::make_unique<OutletInlet<double>>(n.Get<double>("value", 0.0));
   }
+  if (type == "farField") {
+    n.ExpectKeys({"type", "value", "band"});
+    return std::make_unique<FarField<double>>(n.Get<double>("value", 0.0), false, n.GetPositive("band"));
+  }
   if (type == "empty") {
     n.ExpectKeys({"type"});
     return std::make_unique<Empty<double>>();
@@ -191,7 +199,7 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n) {
     if (!(f >= 0.0 && f <= 1.0)) n["fraction"].Fail("a value fraction in [0, 1]");
     return std::make_unique<Mixed<double>>(n.Get<double>("value", 0.0), n.Get<double>("gradient", 0.0), f);
   }
-  n["type"].Fail("one of fixedValue, zeroGradient, outletInlet, empty, mixed");
+  n["type"].Fail("one of fixedValue, zeroGradient, outletInlet, farField, empty, mixed");
 }
 
 }  // namespace
