@@ -477,7 +477,7 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
   w.Commit();
   summary.runs_done = summary.runs_total;
   summary.complete = true;
-  print(true);
+  summary.table = Table(jobs, elapsed(), summary.steps_computed);
   return summary;
 }
 
