@@ -111,6 +111,22 @@ TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
   ExpectSameFile(a.output, b3.output);
 }
 
+TEST(CfdCampaign, SurvivesSigkill) {
+  ScopedTempDir tmp;
+  const CampaignRunSummary a = RunCfdCampaign(ident::LoadCampaignFile(WriteCampaign(tmp / "whole")), Quiet());
+  ASSERT_TRUE(a.complete);
+  const fs::path p = WriteCampaign(tmp / "killed");
+  const std::string kelvin = (kelvin::testing::ToolsDir() / "kelvin").string();
+  // SIGKILL after 1.5 s: mid-campaign on this machine (the whole takes about
+  // 3 s); whenever it lands, the rerun must end with the same file.
+  const auto killed = kelvin::testing::RunCommand("timeout -s KILL 1.5 " + kelvin + " captive " + p.string());
+  std::printf("killed campaign: exit %d, %s\n", killed.exit_code,
+              fs::exists(tmp / "killed/runs/block2d_cfd.h5") ? "had finished" : "unfinished");
+  const auto resumed = kelvin::testing::RunCommand(kelvin + " captive " + p.string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  ExpectSameFile(a.output, tmp / "killed/runs/block2d_cfd.h5");
+}
+
 TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
   ScopedTempDir tmp;
   const ident::CampaignFile serial = ident::LoadCampaignFile(WriteCampaign(tmp / "serial"));
