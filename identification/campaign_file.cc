@@ -65,7 +65,7 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
 
   const auto t = root["tests"];
   t.ExpectKeys({"static_drift_deg", "pure_sway_v_prime", "pure_yaw_r_prime", "yaw_drift_deg", "yaw_drift_r_prime",
-                "omega_prime"});
+                "omega_prime", "circular"});
   f.design.drift_angles = Degrees(t, "static_drift_deg");
   f.design.sway_amplitudes = PositiveList(t, "pure_sway_v_prime");
   f.design.yaw_amplitudes = PositiveList(t, "pure_yaw_r_prime");
@@ -73,9 +73,20 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
   f.design.yaw_drift_amplitude = t.Get<double>("yaw_drift_r_prime", 0.4);
   f.design.omega_prime = t.Get<double>("omega_prime", 3.0);
   if (!(f.design.omega_prime > 0)) t["omega_prime"].Fail("a positive nondimensional frequency");
+  if (auto circ = t.Find("circular")) {
+    // Circular motion (rotating arm): [{drift_deg: 0, r_prime: 0.3}, ...]
+    for (const auto& item : circ->Items()) {
+      item.ExpectKeys({"drift_deg", "r_prime"});
+      const double beta = item.Get<double>("drift_deg", 0.0);
+      if (std::abs(beta) >= 90) item["drift_deg"].Fail("an angle in degrees with |angle| < 90");
+      const double r = item.Get<double>("r_prime");
+      if (!(std::isfinite(r) && r != 0)) item["r_prime"].Fail("a non-zero yaw rate r' = r Lpp / U");
+      f.design.circular.push_back({beta * kDeg, r});
+    }
+  }
   if (f.design.drift_angles.empty() && f.design.sway_amplitudes.empty() && f.design.yaw_amplitudes.empty() &&
-      f.design.yaw_drift_angles.empty()) {
-    t.Fail("at least one test (static_drift_deg, pure_sway_v_prime, pure_yaw_r_prime or yaw_drift_deg)");
+      f.design.yaw_drift_angles.empty() && f.design.circular.empty()) {
+    t.Fail("at least one test (static_drift_deg, pure_sway_v_prime, pure_yaw_r_prime, yaw_drift_deg or circular)");
   }
   if (auto s = root.Find("sampling")) {
     s->ExpectKeys({"samples_per_period", "periods", "ramp_periods"});

@@ -15,6 +15,7 @@
 //     yaw_drift_deg: [6, 12]
 //     yaw_drift_r_prime: 0.4
 //     omega_prime: 3.0                   # omega Lpp / U of the harmonic runs
+//     circular: [{drift_deg: 0, r_prime: 0.3}]   # rotating arm (steady)
 //   sampling: {samples_per_period: 200, periods: 5, ramp_periods: 1}
 //
 // With `solver: cfd` every run is a `kelvin run` case with the prescribed

@@ -36,7 +36,7 @@ std::string ReadText(const fs::path& path) {
 }
 
 // The coarse block campaign with its run directories in `dir`.
-fs::path WriteCampaign(const fs::path& dir, const std::string& extra = "") {
+fs::path WriteCampaign(const fs::path& dir, const std::string& extra_tests = "") {
   std::string text = ReadText(DataDir() / "block2d_campaign.yaml");
   auto replace = [&](const std::string& from, const std::string& to) {
     const auto at = text.find(from);
@@ -46,7 +46,7 @@ fs::path WriteCampaign(const fs::path& dir, const std::string& extra = "") {
   replace("ship: block2d_ship.yaml", "ship: " + (DataDir() / "block2d_ship.yaml").string());
   replace("case: block2d_case.yaml", "case: " + (DataDir() / "block2d_case.yaml").string());
   replace("directory: ../results/block2d_cfd", "directory: " + (dir / "runs").string());
-  text += extra;
+  if (!extra_tests.empty()) replace("  omega_prime:", extra_tests + "  omega_prime:");
   fs::create_directories(dir);
   const fs::path path = dir / "campaign.yaml";
   std::ofstream(path) << text;
@@ -143,11 +143,14 @@ TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
 
 TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
   ScopedTempDir tmp;
-  const ident::CampaignFile f = ident::LoadCampaignFile(WriteCampaign(tmp / "c"));
+  const ident::CampaignFile f = ident::LoadCampaignFile(
+      WriteCampaign(tmp / "c", "  yaw_drift_deg: [5]\n  circular: [{drift_deg: 0, r_prime: 0.3}]\n"));
   const CampaignRunSummary s = RunCfdCampaign(f, Quiet());
   ASSERT_TRUE(s.complete);
   const ident::CaptiveCampaign c = ident::ReadCampaignH5(s.output);  // validates the schema
-  ASSERT_EQ(c.runs.size(), 5u);
+  ASSERT_EQ(c.runs.size(), 7u);
+  EXPECT_EQ(c.runs[5].motion.kind, ident::MotionKind::kYawDrift);
+  EXPECT_EQ(c.runs[6].motion.kind, ident::MotionKind::kCircularMotion);
   EXPECT_EQ(c.ship.name, "block2d");
   EXPECT_DOUBLE_EQ(c.ship.mass, 500.0);
   auto last = [&](const std::string& name, int channel) {
@@ -167,6 +170,10 @@ TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
   EXPECT_NEAR(y_plus + y_minus, 0.0, 1e-6 * std::abs(y_plus));
   EXPECT_NEAR(n_plus + n_minus, 0.0, 1e-6 * std::abs(n_plus));
   EXPECT_LT(last("drift_+0.0deg", 0), 0.0);  // resistance
+  // Turning to starboard at r' = 0.3: the yaw damping moment opposes the turn.
+  std::printf("circular r' = 0.3: Y %.6g N, N %.6g N m\n", last("circular_+0.0deg_r0.300", 1),
+              last("circular_+0.0deg_r0.300", 2));
+  EXPECT_LT(last("circular_+0.0deg_r0.300", 2), 0.0);
   // The prime forces beside them: Y' = Y / (0.5 rho L T U^2) with T = d = 1 m.
   const data::H5Reader r(s.output);
   EXPECT_DOUBLE_EQ(r.Read("/runs/drift_+5.0deg/Y_prime").values.back(), y_plus / 500.0);
