@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -211,6 +212,27 @@ std::vector<int> HullPatches(const Context& ctx, const Case& c) {
   return out;
 }
 
+// An exclusive lock on a run directory, so that two processes (a rerun while
+// orphaned workers of a killed parent still run) never work on one run.
+class RunLock {
+ public:
+  explicit RunLock(const Job& job) {
+    const fs::path path = job.dir / "lock";
+    fd_ = ::open(path.c_str(), O_CREAT | O_RDWR, 0644);
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      if (fd_ >= 0) ::close(fd_);
+      throw InputError(fmt::format("run '{}' is being computed by another process (lock {}); wait for it or stop it",
+                                   job.name, path.string()));
+    }
+  }
+  ~RunLock() { ::close(fd_); }
+  RunLock(const RunLock&) = delete;
+  RunLock& operator=(const RunLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 // Runs (or resumes) one job; false when the step budget ran out first.
 bool ExecuteJob(Context& ctx, Job& job) {
   const fs::path case_dir = ctx.file.cfd.case_file.parent_path();
@@ -219,6 +241,7 @@ bool ExecuteJob(Context& ctx, Job& job) {
   overrides.dt = job.dt;
   overrides.end_time = job.dt * job.steps;
   fs::create_directories(job.dir);
+  const RunLock lock(job);
   const fs::path checkpoint = job.dir / "checkpoint.h5", samples_file = job.dir / "samples.h5";
   std::optional<Case> c(LoadCase(ctx.case_root, case_dir, overrides));
   const std::vector<int> hull = HullPatches(ctx, *c);

@@ -6,7 +6,10 @@
 // signs and symmetry.
 #include "cfd/campaign/cfd_campaign.h"
 
+#include <fcntl.h>
 #include <gmock/gmock.h>
+#include <sys/file.h>
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -178,6 +181,23 @@ TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
   const data::H5Reader r(s.output);
   EXPECT_DOUBLE_EQ(r.Read("/runs/drift_+5.0deg/Y_prime").values.back(), y_plus / 500.0);
   EXPECT_EQ(r.StringAttribute("/", "solver"), "cfd");
+}
+
+TEST(CfdCampaign, ARunInAnotherProcessIsNotComputedTwice) {
+  ScopedTempDir tmp;
+  const ident::CampaignFile f = ident::LoadCampaignFile(WriteCampaign(tmp / "c"));
+  fs::create_directories(tmp / "c/runs/drift_+0.0deg");
+  const std::string lock = (tmp / "c/runs/drift_+0.0deg/lock").string();
+  const int fd = ::open(lock.c_str(), O_CREAT | O_RDWR, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  try {
+    RunCfdCampaign(f, Quiet());
+    FAIL() << "ran a locked run";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("run 'drift_+0.0deg' is being computed by another process"));
+  }
+  ::close(fd);
 }
 
 TEST(CfdCampaign, BadCfdSectionIsOneClearError) {

@@ -117,6 +117,7 @@ double FreeStreamError(Mesh& mesh, const Vector3& current, int steps) {
   SchemeOptions schemes;
   schemes.gradient.scheme = GradientScheme::kLeastSquares;
   schemes.time = TimeScheme::kBackward;
+  schemes.skew_correction = true;
   PimpleOptions pimple;
   pimple.n_outer = 2;
   pimple.n_non_orthogonal = 1;
