@@ -60,7 +60,8 @@ class FarField : public BoundaryCondition<T> {
     this->Resize(ctx.patch.size);
     for (int i = 0; i < ctx.patch.size; ++i) {
       const int f = ctx.patch.start + i;
-      const double un = ctx.face_flux.empty() ? 0.0 : ctx.face_flux[f] / ctx.mesh.face_area_magnitudes()[f];
+      const double un =
+          ctx.face_flux.empty() ? 0.0 : ctx.face_flux[f] / ctx.mesh.face_area_magnitudes()[f];
       const double x = std::clamp(0.5 * (1.0 - un / band_), 0.0, 1.0);  // 1 = inflow
       const double inflow = x * x * (3.0 - 2.0 * x);
       const double w = inflow_fixed_ ? inflow : 1.0 - inflow;  // weight of the fixed value

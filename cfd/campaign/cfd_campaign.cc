@@ -1,12 +1,11 @@
 #include "cfd/campaign/cfd_campaign.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <spawn.h>
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
@@ -37,7 +36,8 @@ using Clock = std::chrono::steady_clock;
 
 // The extra channels beside X, Y, N in the samples and in the campaign file.
 constexpr std::array<std::string_view, 9> kExtraChannels = {
-    "X_pressure", "Y_pressure", "N_pressure", "X_viscous", "Y_viscous", "N_viscous", "X_prime", "Y_prime", "N_prime"};
+    "X_pressure", "Y_pressure", "N_pressure", "X_viscous", "Y_viscous",
+    "N_viscous",  "X_prime",    "Y_prime",    "N_prime"};
 
 struct Job {
   enum class State { kLeft, kRunning, kDone, kFailed };
@@ -69,7 +69,8 @@ PrescribedMotion ToPrescribed(ident::MotionKind kind) {
   return PrescribedMotion::kStaticDrift;
 }
 
-std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip& ship, double case_dt) {
+std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip& ship,
+                          double case_dt) {
   ident::CampaignDesign design = f.design;
   design.U = f.speed;
   std::vector<Job> jobs;
@@ -93,7 +94,8 @@ std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip
       job.steps = (f.sampling.ramp_periods + f.sampling.periods) * f.cfd.steps_per_period;
     } else {
       job.dt = case_dt;
-      job.steps = static_cast<int>(std::llround((f.cfd.steady_ramp + f.cfd.steady_duration) / case_dt));
+      job.steps =
+          static_cast<int>(std::llround((f.cfd.steady_ramp + f.cfd.steady_duration) / case_dt));
     }
     job.dir = f.cfd.directory / run.name;
     jobs.push_back(std::move(job));
@@ -103,7 +105,8 @@ std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip
 
 // --- samples files -----------------------------------------------------------
 
-void WriteSamples(const fs::path& path, const std::vector<CaptiveSample>& samples, int step, int steps) {
+void WriteSamples(const fs::path& path, const std::vector<CaptiveSample>& samples, int step,
+                  int steps) {
   data::H5Writer w(path);
   w.SetAttribute("/", "kind", "kelvin captive CFD run samples");
   w.SetAttribute("/", "step", static_cast<double>(step));
@@ -132,51 +135,67 @@ std::vector<CaptiveSample> ReadSamples(const fs::path& path, const RigidMotion& 
 
 double Extra(const CaptiveSample& s, std::size_t k) {
   switch (k) {
-    case 0: return s.loads.pressure.X;
-    case 1: return s.loads.pressure.Y;
-    case 2: return s.loads.pressure.N;
-    case 3: return s.loads.viscous.X;
-    case 4: return s.loads.viscous.Y;
-    case 5: return s.loads.viscous.N;
-    case 6: return s.prime.X;
-    case 7: return s.prime.Y;
-    default: return s.prime.N;
+    case 0:
+      return s.loads.pressure.X;
+    case 1:
+      return s.loads.pressure.Y;
+    case 2:
+      return s.loads.pressure.N;
+    case 3:
+      return s.loads.viscous.X;
+    case 4:
+      return s.loads.viscous.Y;
+    case 5:
+      return s.loads.viscous.N;
+    case 6:
+      return s.prime.X;
+    case 7:
+      return s.prime.Y;
+    default:
+      return s.prime.N;
   }
 }
 
 void WriteProgressFile(const Job& job, double seconds) {
-  data::WriteFileAtomically(job.dir / "progress.txt", fmt::format("{} {} {:.3f}\n", job.step, job.steps, seconds));
+  data::WriteFileAtomically(job.dir / "progress.txt",
+                            fmt::format("{} {} {:.3f}\n", job.step, job.steps, seconds));
 }
 
 // --- the progress table ------------------------------------------------------
 
 std::string StateName(Job::State s) {
   switch (s) {
-    case Job::State::kLeft: return "left";
-    case Job::State::kRunning: return "running";
-    case Job::State::kDone: return "done";
-    case Job::State::kFailed: return "failed";
+    case Job::State::kLeft:
+      return "left";
+    case Job::State::kRunning:
+      return "running";
+    case Job::State::kDone:
+      return "done";
+    case Job::State::kFailed:
+      return "failed";
   }
   return "";
 }
 
 std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
-  std::string out = fmt::format("  {:<30} {:<16} {:<8} {:>13}\n", "run", "motion", "status", "steps");
+  std::string out =
+      fmt::format("  {:<30} {:<16} {:<8} {:>13}\n", "run", "motion", "status", "steps");
   int done = 0, running = 0, left = 0;
   long remaining = 0;
   for (const Job& j : jobs) {
-    out += fmt::format("  {:<30} {:<16} {:<8} {:>6}/{:<6}\n", j.name, ident::MotionKindName(j.motion.kind),
-                       StateName(j.state), j.step, j.steps);
+    out += fmt::format("  {:<30} {:<16} {:<8} {:>6}/{:<6}\n", j.name,
+                       ident::MotionKindName(j.motion.kind), StateName(j.state), j.step, j.steps);
     done += j.state == Job::State::kDone;
     running += j.state == Job::State::kRunning;
     left += j.state == Job::State::kLeft;
     if (j.state != Job::State::kDone) remaining += j.steps - j.step;
   }
-  const std::string eta = computed > 0 && elapsed > 0
-                              ? FormatDuration(static_cast<double>(remaining) * elapsed / static_cast<double>(computed))
-                              : std::string("unknown");
-  out += fmt::format("  {} done, {} running, {} left; {} steps to go, ETA {} (elapsed {})\n", done, running, left,
-                     remaining, eta, FormatDuration(elapsed));
+  const std::string eta =
+      computed > 0 && elapsed > 0
+          ? FormatDuration(static_cast<double>(remaining) * elapsed / static_cast<double>(computed))
+          : std::string("unknown");
+  out += fmt::format("  {} done, {} running, {} left; {} steps to go, ETA {} (elapsed {})\n", done,
+                     running, left, remaining, eta, FormatDuration(elapsed));
   return out;
 }
 
@@ -186,17 +205,19 @@ struct Context {
   const ident::CampaignFile& file;
   const data::ConfigNode& case_root;
   const ident::CaptiveShip& ship;
-  long budget = 0;     // > 0: steps allowed in this call
-  long computed = 0;   // steps computed in this call
+  long budget = 0;    // > 0: steps allowed in this call
+  long computed = 0;  // steps computed in this call
   std::function<void()> report;
 };
 
 std::vector<int> HullPatches(const Context& ctx, const Case& c) {
-  std::vector<std::string> names = ctx.file.cfd.hull_patches.empty() ? c.force_patches : ctx.file.cfd.hull_patches;
+  std::vector<std::string> names =
+      ctx.file.cfd.hull_patches.empty() ? c.force_patches : ctx.file.cfd.hull_patches;
   if (names.empty()) {
-    throw ConfigError(fmt::format("{}: cfd.hull_patches is empty and the case {} has no output.forces; expected the "
-                                  "hull patch names",
-                                  ctx.file.path.string(), ctx.file.cfd.case_file.string()));
+    throw ConfigError(fmt::format(
+        "{}: cfd.hull_patches is empty and the case {} has no output.forces; expected the "
+        "hull patch names",
+        ctx.file.path.string(), ctx.file.cfd.case_file.string()));
   }
   std::vector<int> out;
   for (const std::string& n : names) {
@@ -204,8 +225,9 @@ std::vector<int> HullPatches(const Context& ctx, const Case& c) {
     if (p < 0) {
       std::vector<std::string> all;
       for (const Patch& patch : c.mesh->patches()) all.push_back(patch.name);
-      throw ConfigError(fmt::format("{}: cfd.hull_patches: '{}' is not a patch of the case mesh ({})",
-                                    ctx.file.path.string(), n, fmt::join(all, ", ")));
+      throw ConfigError(
+          fmt::format("{}: cfd.hull_patches: '{}' is not a patch of the case mesh ({})",
+                      ctx.file.path.string(), n, fmt::join(all, ", ")));
     }
     out.push_back(p);
   }
@@ -221,8 +243,9 @@ class RunLock {
     fd_ = ::open(path.c_str(), O_CREAT | O_RDWR, 0644);
     if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       if (fd_ >= 0) ::close(fd_);
-      throw InputError(fmt::format("run '{}' is being computed by another process (lock {}); wait for it or stop it",
-                                   job.name, path.string()));
+      throw InputError(fmt::format(
+          "run '{}' is being computed by another process (lock {}); wait for it or stop it",
+          job.name, path.string()));
     }
   }
   ~RunLock() { ::close(fd_); }
@@ -246,7 +269,8 @@ bool ExecuteJob(Context& ctx, Job& job) {
   std::optional<Case> c(LoadCase(ctx.case_root, case_dir, overrides));
   const std::vector<int> hull = HullPatches(ctx, *c);
   const double nu = ctx.case_root["physics"].GetPositive("nu");
-  const PrimeScales scales{c->rho, ctx.ship.Lpp, ctx.file.cfd.draft > 0 ? ctx.file.cfd.draft : ctx.ship.d,
+  const PrimeScales scales{c->rho, ctx.ship.Lpp,
+                           ctx.file.cfd.draft > 0 ? ctx.file.cfd.draft : ctx.ship.d,
                            job.cfd_motion.speed};
   std::vector<CaptiveSample> samples;
   if (fs::exists(checkpoint) && fs::exists(samples_file)) {
@@ -270,10 +294,11 @@ bool ExecuteJob(Context& ctx, Job& job) {
     const StepSummary s = solver.Step(job.dt);
     ++ctx.computed;
     if (!s.finite) {
-      throw InputError(fmt::format("run '{}' diverged at step {} (t = {:.6g} s, Courant {:.3g}); last good "
-                                   "checkpoint: {}",
-                                   job.name, s.step, s.time, s.courant_max,
-                                   fs::exists(checkpoint) ? checkpoint.string() : "none"));
+      throw InputError(
+          fmt::format("run '{}' diverged at step {} (t = {:.6g} s, Courant {:.3g}); last good "
+                      "checkpoint: {}",
+                      job.name, s.step, s.time, s.courant_max,
+                      fs::exists(checkpoint) ? checkpoint.string() : "none"));
     }
     samples.push_back(MakeCaptiveSample(solver, *c->motion, hull, c->rho, nu, scales));
     job.step = solver.step();
@@ -305,17 +330,20 @@ pid_t SpawnWorker(const ident::CampaignFile& f, const fs::path& exe, Job& job) {
   const std::string log = (job.dir / "log.txt").string();
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<std::string> args = {exe.string(), "--quiet", "captive", f.path.string(), "--run", job.name,
-                                   "--no-progress"};
+  std::vector<std::string> args = {exe.string(), "--quiet", "captive",      f.path.string(),
+                                   "--run",      job.name,  "--no-progress"};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t pid = -1;
   const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw InputError(fmt::format("cannot start {} for run '{}' (error {})", exe.string(), job.name, rc));
+  if (rc != 0)
+    throw InputError(
+        fmt::format("cannot start {} for run '{}' (error {})", exe.string(), job.name, rc));
   return pid;
 }
 
@@ -335,18 +363,22 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
     throw ConfigError(f.path.string() + ": campaign.solver is not 'cfd'");
   }
   const ident::CaptiveShip ship = ident::LoadCaptiveShip(f.ship_file);
-  if (!(f.speed > 0)) throw ConfigError(f.path.string() + ": campaign.speed: expected the carriage speed in m/s");
+  if (!(f.speed > 0))
+    throw ConfigError(f.path.string() + ": campaign.speed: expected the carriage speed in m/s");
   const data::ConfigNode case_root = data::ConfigNode::LoadFile(f.cfd.case_file);
-  const double case_rho = case_root["physics"].Has("rho") ? case_root["physics"].GetPositive("rho") : 1000.0;
+  const double case_rho =
+      case_root["physics"].Has("rho") ? case_root["physics"].GetPositive("rho") : 1000.0;
   if (std::abs(case_rho - ship.rho) > 1e-9 * ship.rho) {
-    throw ConfigError(fmt::format("{}: physics.rho = {} differs from the ship's rho = {} ({}); the prime system "
-                                  "needs one density",
-                                  f.cfd.case_file.string(), case_rho, ship.rho, f.ship_file.string()));
+    throw ConfigError(
+        fmt::format("{}: physics.rho = {} differs from the ship's rho = {} ({}); the prime system "
+                    "needs one density",
+                    f.cfd.case_file.string(), case_rho, ship.rho, f.ship_file.string()));
   }
   std::vector<Job> jobs = PlanJobs(f, ship, case_root["time"].GetPositive("dt"));
   const int n_jobs = options.jobs > 0 ? options.jobs : f.cfd.jobs;
   if (n_jobs > 1 && options.stop_after_steps > 0) {
-    throw ArgumentError("--stop-after-steps runs the campaign in one process; use it with --jobs 1");
+    throw ArgumentError(
+        "--stop-after-steps runs the campaign in one process; use it with --jobs 1");
   }
   CampaignRunSummary summary;
   summary.output = options.output.empty() ? f.cfd.directory / (f.name + ".h5") : options.output;
@@ -367,18 +399,20 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
     if (!options.progress) return;
     if (!force && Clock::now() - last_print < std::chrono::seconds(10)) return;
     last_print = Clock::now();
-    std::fprintf(options.stream, "captive campaign '%s' (cfd):\n%s", f.name.c_str(), summary.table.c_str());
+    std::fprintf(options.stream, "captive campaign '%s' (cfd):\n%s", f.name.c_str(),
+                 summary.table.c_str());
     std::fflush(options.stream);
   };
 
   Context ctx{f, case_root, ship, options.stop_after_steps, 0, {}};
   if (!options.only_run.empty()) {
-    auto it = std::find_if(jobs.begin(), jobs.end(), [&](const Job& j) { return j.name == options.only_run; });
+    auto it = std::find_if(jobs.begin(), jobs.end(),
+                           [&](const Job& j) { return j.name == options.only_run; });
     if (it == jobs.end()) {
       std::vector<std::string> names;
       for (const Job& j : jobs) names.push_back(j.name);
-      throw ArgumentError(fmt::format("--run {}: no such run in {} (runs: {})", options.only_run, f.path.string(),
-                                      fmt::join(names, ", ")));
+      throw ArgumentError(fmt::format("--run {}: no such run in {} (runs: {})", options.only_run,
+                                      f.path.string(), fmt::join(names, ", ")));
     }
     if (it->state != Job::State::kDone) {
       it->state = Job::State::kRunning;
@@ -410,7 +444,8 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
       print(true);
     }
   } else {
-    if (options.executable.empty()) throw ArgumentError("--jobs > 1 needs the path of the kelvin program");
+    if (options.executable.empty())
+      throw ArgumentError("--jobs > 1 needs the path of the kelvin program");
     print(true);
     int running = 0;
     for (;;) {
@@ -454,15 +489,18 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
     }
     std::string failures;
     for (const Job& j : jobs) {
-      if (j.state == Job::State::kFailed) failures += fmt::format("\n  run '{}': {}", j.name, j.message);
+      if (j.state == Job::State::kFailed)
+        failures += fmt::format("\n  run '{}': {}", j.name, j.message);
     }
-    if (!failures.empty()) throw InputError("captive campaign '" + f.name + "': runs failed:" + failures);
+    if (!failures.empty())
+      throw InputError("captive campaign '" + f.name + "': runs failed:" + failures);
   }
 
   // Every run is done: the campaign file in the captive schema.
   ident::CaptiveCampaign campaign;
   campaign.description = fmt::format(
-      "CFD captive campaign '{}' of {}: case {}, double body (no free surface), hull loads on the moving mesh",
+      "CFD captive campaign '{}' of {}: case {}, double body (no free surface), hull loads on the "
+      "moving mesh",
       f.name, ship.name, f.cfd.case_file.filename().string());
   campaign.ship = ship;
   std::vector<std::vector<CaptiveSample>> all;
@@ -491,10 +529,11 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
       std::vector<double> v;
       for (const CaptiveSample& s : all[r]) v.push_back(Extra(s, k));
       const bool prime = k >= 6;
-      w.WriteArray(fmt::format("runs/{}/{}", jobs[r].name, kExtraChannels[k]), v, {v.size()},
-                   prime ? "1" : (k % 3 == 2 ? "N m" : "N"),
-                   prime ? "prime system: forces / (0.5 rho Lpp T U^2), moment / (0.5 rho Lpp^2 T U^2)"
-                         : (k < 3 ? "pressure part" : "viscous part"));
+      w.WriteArray(
+          fmt::format("runs/{}/{}", jobs[r].name, kExtraChannels[k]), v, {v.size()},
+          prime ? "1" : (k % 3 == 2 ? "N m" : "N"),
+          prime ? "prime system: forces / (0.5 rho Lpp T U^2), moment / (0.5 rho Lpp^2 T U^2)"
+                : (k < 3 ? "pressure part" : "viscous part"));
     }
   }
   w.Commit();

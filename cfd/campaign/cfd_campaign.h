@@ -26,27 +26,28 @@
 namespace kelvin::cfd {
 
 struct CampaignRunOptions {
-  int jobs = 0;                       // concurrent runs; 0 = the campaign file's cfd.jobs
-  long stop_after_steps = 0;          // > 0: stop, as if killed, after this many steps in this call
-  std::string only_run;               // run just this run and write its result (worker mode)
-  std::filesystem::path executable;   // the kelvin program (for jobs > 1)
-  std::filesystem::path output;       // campaign HDF5 (default: <cfd.directory>/<name>.h5)
-  bool progress = true;               // print the progress table
+  int jobs = 0;                      // concurrent runs; 0 = the campaign file's cfd.jobs
+  long stop_after_steps = 0;         // > 0: stop, as if killed, after this many steps in this call
+  std::string only_run;              // run just this run and write its result (worker mode)
+  std::filesystem::path executable;  // the kelvin program (for jobs > 1)
+  std::filesystem::path output;      // campaign HDF5 (default: <cfd.directory>/<name>.h5)
+  bool progress = true;              // print the progress table
   std::FILE* stream = stdout;
 };
 
 struct CampaignRunSummary {
-  bool complete = false;     // every run finished and the campaign file is written
+  bool complete = false;  // every run finished and the campaign file is written
   int runs_total = 0;
   int runs_done = 0;
-  long steps_computed = 0;   // time steps computed in this call
+  long steps_computed = 0;  // time steps computed in this call
   std::filesystem::path output;
-  std::string table;         // the last progress table
+  std::string table;  // the last progress table
 };
 
 // Runs or resumes the campaign. Throws ConfigError for a bad cfd: section or
 // case (naming the file and key) and InputError when a run diverges (naming
 // the run and its last checkpoint, which stays on disk).
-CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& file, const CampaignRunOptions& options);
+CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& file,
+                                  const CampaignRunOptions& options);
 
 }  // namespace kelvin::cfd

@@ -4,9 +4,11 @@
 
 namespace kelvin::cfd {
 
-RigidMeshMotion::RigidMeshMotion(Mesh& mesh, RigidMotion motion) : mesh_(mesh), motion_(std::move(motion)) {
-  KELVIN_CHECK(mesh.placement_rotation().isIdentity(0.0) && mesh.placement_translation().isZero(0.0),
-               "a rigid mesh motion starts from the body-fixed geometry");
+RigidMeshMotion::RigidMeshMotion(Mesh& mesh, RigidMotion motion)
+    : mesh_(mesh), motion_(std::move(motion)) {
+  KELVIN_CHECK(
+      mesh.placement_rotation().isIdentity(0.0) && mesh.placement_translation().isZero(0.0),
+      "a rigid mesh motion starts from the body-fixed geometry");
   const Vector3& c = motion_.options().centre;
   const auto points = mesh.points();
   body_face_areas_.assign(mesh.face_areas().begin(), mesh.face_areas().end());

@@ -15,18 +15,22 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 
-constexpr std::array<std::string_view, 5> kKindNames = {"static_drift", "pure_sway", "pure_yaw", "yaw_drift",
-                                                        "circular_motion"};
+constexpr std::array<std::string_view, 5> kKindNames = {"static_drift", "pure_sway", "pure_yaw",
+                                                        "yaw_drift", "circular_motion"};
 
 bool UsesDrift(PrescribedMotion k) {
   return k == PrescribedMotion::kStaticDrift || k == PrescribedMotion::kYawDrift ||
          k == PrescribedMotion::kCircularMotion;
 }
-bool UsesYawAmplitude(PrescribedMotion k) { return k == PrescribedMotion::kPureYaw || k == PrescribedMotion::kYawDrift; }
+bool UsesYawAmplitude(PrescribedMotion k) {
+  return k == PrescribedMotion::kPureYaw || k == PrescribedMotion::kYawDrift;
+}
 
 }  // namespace
 
-std::string_view PrescribedMotionName(PrescribedMotion kind) { return kKindNames[static_cast<int>(kind)]; }
+std::string_view PrescribedMotionName(PrescribedMotion kind) {
+  return kKindNames[static_cast<int>(kind)];
+}
 
 bool MotionOptions::harmonic() const {
   return kind == PrescribedMotion::kPureSway || kind == PrescribedMotion::kPureYaw ||
@@ -46,19 +50,23 @@ void MotionOptions::Validate() const {
   auto fail = [](std::string_view key, double value, std::string_view expected) {
     throw ConfigError(fmt::format("motion.{} = {:.6g}: expected {}", key, value, expected));
   };
-  if (!(speed > 0.0) || !std::isfinite(speed)) fail("speed", speed, "a finite carriage speed > 0 m/s");
-  if (!(ramp_time >= 0.0) || !std::isfinite(ramp_time)) fail("ramp_time", ramp_time, "a finite time >= 0 s");
+  if (!(speed > 0.0) || !std::isfinite(speed))
+    fail("speed", speed, "a finite carriage speed > 0 m/s");
+  if (!(ramp_time >= 0.0) || !std::isfinite(ramp_time))
+    fail("ramp_time", ramp_time, "a finite time >= 0 s");
   if (!std::isfinite(drift_angle) || std::abs(drift_angle) >= 0.5 * kPi) {
     fail("drift_angle_deg", drift_angle / kDeg, "|angle| < 90 degrees");
   }
   if (!UsesDrift(kind) && drift_angle != 0.0) {
-    fail("drift_angle_deg", drift_angle / kDeg, fmt::format("0 (not used by {})", PrescribedMotionName(kind)));
+    fail("drift_angle_deg", drift_angle / kDeg,
+         fmt::format("0 (not used by {})", PrescribedMotionName(kind)));
   }
   if (harmonic()) {
     if (!(period > 0.0) || !std::isfinite(period)) fail("period", period, "a finite period > 0 s");
     if (periods < 0) fail("periods", periods, "a number of whole periods >= 1");
   }
-  if (kind == PrescribedMotion::kPureSway && (!(sway_amplitude > 0.0) || !std::isfinite(sway_amplitude))) {
+  if (kind == PrescribedMotion::kPureSway &&
+      (!(sway_amplitude > 0.0) || !std::isfinite(sway_amplitude))) {
     fail("sway_amplitude", sway_amplitude, "a finite amplitude > 0 m");
   }
   if (UsesYawAmplitude(kind) && (!(yaw_amplitude > 0.0) || yaw_amplitude >= 0.5 * kPi)) {
@@ -101,7 +109,8 @@ MotionOptions LoadMotionOptions(const data::ConfigNode& node) {
   if (o.harmonic()) {
     o.period = node.GetPositive("period");
     o.periods = node.Get<int>("periods", 0);
-    if (o.periods < 0 || (node.Has("periods") && o.periods == 0)) node["periods"].Fail("a number of periods >= 1");
+    if (o.periods < 0 || (node.Has("periods") && o.periods == 0))
+      node["periods"].Fail("a number of periods >= 1");
   }
   if (o.kind == PrescribedMotion::kPureSway) o.sway_amplitude = node.GetPositive("sway_amplitude");
   if (UsesYawAmplitude(o.kind)) o.yaw_amplitude = node.GetPositive("yaw_amplitude_deg") * kDeg;
@@ -137,7 +146,9 @@ Eigen::Vector3d Pose::Translation(const Eigen::Vector3d& centre) const {
 Eigen::Vector3d Pose::Velocity() const { return Eigen::Vector3d(dx0, -dy0, 0.0); }
 Eigen::Vector3d Pose::AngularVelocity() const { return Eigen::Vector3d(0.0, 0.0, -r); }
 
-RigidMotion::RigidMotion(MotionOptions options) : options_(std::move(options)) { options_.Validate(); }
+RigidMotion::RigidMotion(MotionOptions options) : options_(std::move(options)) {
+  options_.Validate();
+}
 
 double RigidMotion::Ramp(double t) const {
   const double T = options_.ramp_time;

@@ -24,7 +24,6 @@
 #pragma once
 
 #include <Eigen/Core>
-
 #include <string>
 #include <string_view>
 
@@ -40,14 +39,14 @@ std::string_view PrescribedMotionName(PrescribedMotion kind);
 
 struct MotionOptions {
   PrescribedMotion kind = PrescribedMotion::kStaticDrift;
-  double speed = 0.0;          // U, carriage speed (m/s), > 0
-  double drift_angle = 0.0;    // beta (rad), |beta| < pi/2 (static drift, yaw with drift, circular)
-  double sway_amplitude = 0.0; // y_a (m), pure sway
-  double yaw_amplitude = 0.0;  // psi_a (rad), pure yaw and yaw with drift
-  double period = 0.0;         // 2 pi / omega (s), harmonic motions
-  double yaw_rate = 0.0;       // r (rad/s), circular motion, non-zero
-  double ramp_time = 0.0;      // t_ramp (s), >= 0; 0 is an impulsive start
-  int periods = 0;             // harmonic runs: whole periods after the ramp (0 = not given)
+  double speed = 0.0;        // U, carriage speed (m/s), > 0
+  double drift_angle = 0.0;  // beta (rad), |beta| < pi/2 (static drift, yaw with drift, circular)
+  double sway_amplitude = 0.0;  // y_a (m), pure sway
+  double yaw_amplitude = 0.0;   // psi_a (rad), pure yaw and yaw with drift
+  double period = 0.0;          // 2 pi / omega (s), harmonic motions
+  double yaw_rate = 0.0;        // r (rad/s), circular motion, non-zero
+  double ramp_time = 0.0;       // t_ramp (s), >= 0; 0 is an impulsive start
+  int periods = 0;              // harmonic runs: whole periods after the ramp (0 = not given)
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // reference point (midship), grid axes (m)
 
   double omega() const;  // 2 pi / period, 0 for steady motions
@@ -76,17 +75,17 @@ MotionOptions LoadMotionOptions(const data::ConfigNode& node);
 
 // The state of the body at one time.
 struct Pose {
-  double x0 = 0.0, y0 = 0.0, psi = 0.0;     // earth position (m, starboard +) and heading (rad)
-  double dx0 = 0.0, dy0 = 0.0, r = 0.0;     // earth velocity (m/s) and yaw rate (rad/s)
+  double x0 = 0.0, y0 = 0.0, psi = 0.0;  // earth position (m, starboard +) and heading (rad)
+  double dx0 = 0.0, dy0 = 0.0, r = 0.0;  // earth velocity (m/s) and yaw rate (rad/s)
   // Body velocities of the reference point in ship axes (x forward, y
   // starboard): u = dx0 cos psi + dy0 sin psi, v = -dx0 sin psi + dy0 cos psi.
   double u() const;
   double v() const;
   // Placement of the grid in the z-up earth frame (see the file comment).
-  Eigen::Matrix3d Rotation() const;                                     // Rz(-psi)
-  Eigen::Vector3d Translation(const Eigen::Vector3d& centre) const;    // x_E = R xi + t
-  Eigen::Vector3d Velocity() const;                                     // (dx0, -dy0, 0)
-  Eigen::Vector3d AngularVelocity() const;                              // (0, 0, -r)
+  Eigen::Matrix3d Rotation() const;                                  // Rz(-psi)
+  Eigen::Vector3d Translation(const Eigen::Vector3d& centre) const;  // x_E = R xi + t
+  Eigen::Vector3d Velocity() const;                                  // (dx0, -dy0, 0)
+  Eigen::Vector3d AngularVelocity() const;                           // (0, 0, -r)
 };
 
 class RigidMotion {

@@ -2,8 +2,8 @@
 
 namespace kelvin::cfd {
 
-HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, double rho, double nu,
-                           const Pose& pose, const Vector3& centre_body) {
+HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, double rho,
+                           double nu, const Pose& pose, const Vector3& centre_body) {
   const Mesh& mesh = s.mesh();
   const int ni = mesh.n_internal_faces();
   const Eigen::Matrix3d R = pose.Rotation();
@@ -17,8 +17,8 @@ HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, 
       // S_f points out of the water, into the body: the pressure pushes along
       // it; the wall shear stress on the body is -mu dU/dn_out.
       const Vector3 dp = rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
-      const Vector3 sn_grad =
-          bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) + bc.gradient_boundary()[i];
+      const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) +
+                              bc.gradient_boundary()[i];
       const Vector3 dv = -rho * nu * sn_grad * mesh.face_area_magnitudes()[f];
       const Vector3 arm = mesh.face_centres()[f] - centre;
       fp += dp;
@@ -42,8 +42,9 @@ PlanarLoad PrimeScales::ToPrime(const PlanarLoad& load) const {
   return {load.X / force, load.Y / force, load.N / (force * length)};
 }
 
-CaptiveSample MakeCaptiveSample(const PimpleSolver& s, const RigidMeshMotion& motion, std::span<const int> patches,
-                          double rho, double nu, const PrimeScales& scales) {
+CaptiveSample MakeCaptiveSample(const PimpleSolver& s, const RigidMeshMotion& motion,
+                                std::span<const int> patches, double rho, double nu,
+                                const PrimeScales& scales) {
   CaptiveSample r;
   r.time = s.time();
   r.pose = motion.motion().At(s.time());
@@ -54,30 +55,61 @@ CaptiveSample MakeCaptiveSample(const PimpleSolver& s, const RigidMeshMotion& mo
 
 void WriteCaptiveHistory(data::H5Writer& w, const std::vector<CaptiveSample>& rows) {
   const std::size_t n = rows.size();
-  auto series = [&](const std::string& name, auto get, std::string_view units, std::string_view description) {
+  auto series = [&](const std::string& name, auto get, std::string_view units,
+                    std::string_view description) {
     std::vector<double> v(n);
     for (std::size_t i = 0; i < n; ++i) v[i] = get(rows[i]);
     w.WriteArray("captive/" + name, v, {n}, units, description);
   };
-  series("time", [](const CaptiveSample& r) { return r.time; }, "s", "time");
-  series("X", [](const CaptiveSample& r) { return r.loads.Total().X; }, "N", "surge force, ship axes");
-  series("Y", [](const CaptiveSample& r) { return r.loads.Total().Y; }, "N", "sway force, ship axes (starboard)");
-  series("N", [](const CaptiveSample& r) { return r.loads.Total().N; }, "N m", "yaw moment about the reference point");
-  series("X_pressure", [](const CaptiveSample& r) { return r.loads.pressure.X; }, "N", "pressure part of X");
-  series("Y_pressure", [](const CaptiveSample& r) { return r.loads.pressure.Y; }, "N", "pressure part of Y");
-  series("N_pressure", [](const CaptiveSample& r) { return r.loads.pressure.N; }, "N m", "pressure part of N");
-  series("X_viscous", [](const CaptiveSample& r) { return r.loads.viscous.X; }, "N", "viscous part of X");
-  series("Y_viscous", [](const CaptiveSample& r) { return r.loads.viscous.Y; }, "N", "viscous part of Y");
-  series("N_viscous", [](const CaptiveSample& r) { return r.loads.viscous.N; }, "N m", "viscous part of N");
-  series("X_prime", [](const CaptiveSample& r) { return r.prime.X; }, "1", "X / (0.5 rho L T U^2)");
-  series("Y_prime", [](const CaptiveSample& r) { return r.prime.Y; }, "1", "Y / (0.5 rho L T U^2)");
-  series("N_prime", [](const CaptiveSample& r) { return r.prime.N; }, "1", "N / (0.5 rho L^2 T U^2)");
-  series("x0", [](const CaptiveSample& r) { return r.pose.x0; }, "m", "earth position of the reference point");
-  series("y0", [](const CaptiveSample& r) { return r.pose.y0; }, "m", "earth position, starboard positive");
-  series("psi", [](const CaptiveSample& r) { return r.pose.psi; }, "rad", "heading, starboard positive");
-  series("u", [](const CaptiveSample& r) { return r.pose.u(); }, "m/s", "surge velocity, ship axes");
-  series("v", [](const CaptiveSample& r) { return r.pose.v(); }, "m/s", "sway velocity, ship axes");
-  series("r", [](const CaptiveSample& r) { return r.pose.r; }, "rad/s", "yaw rate");
+  series(
+      "time", [](const CaptiveSample& r) { return r.time; }, "s", "time");
+  series(
+      "X", [](const CaptiveSample& r) { return r.loads.Total().X; }, "N", "surge force, ship axes");
+  series(
+      "Y", [](const CaptiveSample& r) { return r.loads.Total().Y; }, "N",
+      "sway force, ship axes (starboard)");
+  series(
+      "N", [](const CaptiveSample& r) { return r.loads.Total().N; }, "N m",
+      "yaw moment about the reference point");
+  series(
+      "X_pressure", [](const CaptiveSample& r) { return r.loads.pressure.X; }, "N",
+      "pressure part of X");
+  series(
+      "Y_pressure", [](const CaptiveSample& r) { return r.loads.pressure.Y; }, "N",
+      "pressure part of Y");
+  series(
+      "N_pressure", [](const CaptiveSample& r) { return r.loads.pressure.N; }, "N m",
+      "pressure part of N");
+  series(
+      "X_viscous", [](const CaptiveSample& r) { return r.loads.viscous.X; }, "N",
+      "viscous part of X");
+  series(
+      "Y_viscous", [](const CaptiveSample& r) { return r.loads.viscous.Y; }, "N",
+      "viscous part of Y");
+  series(
+      "N_viscous", [](const CaptiveSample& r) { return r.loads.viscous.N; }, "N m",
+      "viscous part of N");
+  series(
+      "X_prime", [](const CaptiveSample& r) { return r.prime.X; }, "1", "X / (0.5 rho L T U^2)");
+  series(
+      "Y_prime", [](const CaptiveSample& r) { return r.prime.Y; }, "1", "Y / (0.5 rho L T U^2)");
+  series(
+      "N_prime", [](const CaptiveSample& r) { return r.prime.N; }, "1", "N / (0.5 rho L^2 T U^2)");
+  series(
+      "x0", [](const CaptiveSample& r) { return r.pose.x0; }, "m",
+      "earth position of the reference point");
+  series(
+      "y0", [](const CaptiveSample& r) { return r.pose.y0; }, "m",
+      "earth position, starboard positive");
+  series(
+      "psi", [](const CaptiveSample& r) { return r.pose.psi; }, "rad",
+      "heading, starboard positive");
+  series(
+      "u", [](const CaptiveSample& r) { return r.pose.u(); }, "m/s", "surge velocity, ship axes");
+  series(
+      "v", [](const CaptiveSample& r) { return r.pose.v(); }, "m/s", "sway velocity, ship axes");
+  series(
+      "r", [](const CaptiveSample& r) { return r.pose.r; }, "rad/s", "yaw rate");
 }
 
 }  // namespace kelvin::cfd

@@ -30,8 +30,8 @@ struct HullLoads {
 // Loads on the patches `patches` (mesh patch indices) at the solver's present
 // state, with the mesh placed at `pose`. p is kinematic, so forces are times
 // rho; nu is the kinematic viscosity of the wall shear stress.
-HullLoads ComputeHullLoads(const PimpleSolver& solver, std::span<const int> patches, double rho, double nu,
-                           const Pose& pose, const Vector3& centre_body);
+HullLoads ComputeHullLoads(const PimpleSolver& solver, std::span<const int> patches, double rho,
+                           double nu, const Pose& pose, const Vector3& centre_body);
 
 // Prime system scales.
 struct PrimeScales {
@@ -51,7 +51,8 @@ struct CaptiveSample {
 };
 
 CaptiveSample MakeCaptiveSample(const PimpleSolver& solver, const RigidMeshMotion& motion,
-                                std::span<const int> patches, double rho, double nu, const PrimeScales& scales);
+                                std::span<const int> patches, double rho, double nu,
+                                const PrimeScales& scales);
 
 // Writes the samples as the group `captive` (time, X, Y, N, their pressure
 // and viscous parts, X_prime, Y_prime, N_prime, pose x0, y0, psi and body

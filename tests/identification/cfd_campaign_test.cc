@@ -8,9 +8,9 @@
 
 #include <fcntl.h>
 #include <gmock/gmock.h>
+#include <gtest/gtest.h>
 #include <sys/file.h>
 #include <unistd.h>
-#include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
@@ -26,8 +26,8 @@ namespace kelvin::cfd {
 namespace {
 
 namespace fs = std::filesystem;
-using ::testing::HasSubstr;
 using kelvin::testing::ScopedTempDir;
+using ::testing::HasSubstr;
 
 fs::path DataDir() { return kelvin::testing::SourceDir() / "data/cases/captive_cfd"; }
 
@@ -70,7 +70,8 @@ void ExpectSameFile(const fs::path& a, const fs::path& b) {
     const std::string& name = ca.runs[r].name;
     EXPECT_EQ(name, cb.runs[r].name);
     EXPECT_EQ(ca.runs[r].time, cb.runs[r].time) << name;  // bit for bit
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(ca.runs[r].force[c], cb.runs[r].force[c]) << name << " channel " << c;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(ca.runs[r].force[c], cb.runs[r].force[c]) << name << " channel " << c;
     for (const char* extra : {"X_pressure", "N_viscous", "Y_prime"}) {
       const std::string ds = "/runs/" + name + "/" + extra;
       EXPECT_EQ(ra.Read(ds).values, rb.Read(ds).values) << ds;
@@ -116,13 +117,15 @@ TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
 
 TEST(CfdCampaign, SurvivesSigkill) {
   ScopedTempDir tmp;
-  const CampaignRunSummary a = RunCfdCampaign(ident::LoadCampaignFile(WriteCampaign(tmp / "whole")), Quiet());
+  const CampaignRunSummary a =
+      RunCfdCampaign(ident::LoadCampaignFile(WriteCampaign(tmp / "whole")), Quiet());
   ASSERT_TRUE(a.complete);
   const fs::path p = WriteCampaign(tmp / "killed");
   const std::string kelvin = (kelvin::testing::ToolsDir() / "kelvin").string();
   // SIGKILL after 1.5 s: mid-campaign on this machine (the whole takes about
   // 3 s); whenever it lands, the rerun must end with the same file.
-  const auto killed = kelvin::testing::RunCommand("timeout -s KILL 1.5 " + kelvin + " captive " + p.string());
+  const auto killed =
+      kelvin::testing::RunCommand("timeout -s KILL 1.5 " + kelvin + " captive " + p.string());
   std::printf("killed campaign: exit %d, %s\n", killed.exit_code,
               fs::exists(tmp / "killed/runs/block2d_cfd.h5") ? "had finished" : "unfinished");
   const auto resumed = kelvin::testing::RunCommand(kelvin + " captive " + p.string());
@@ -136,8 +139,8 @@ TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
   const CampaignRunSummary a = RunCfdCampaign(serial, Quiet());
   ASSERT_TRUE(a.complete);
   const fs::path parallel = WriteCampaign(tmp / "parallel");
-  const auto r = kelvin::testing::RunCommand((kelvin::testing::ToolsDir() / "kelvin").string() + " captive " +
-                                             parallel.string() + " --jobs 2");
+  const auto r = kelvin::testing::RunCommand((kelvin::testing::ToolsDir() / "kelvin").string() +
+                                             " captive " + parallel.string() + " --jobs 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("5 done, 0 running, 0 left"));
   EXPECT_THAT(r.output, HasSubstr("ETA"));
@@ -146,8 +149,8 @@ TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
 
 TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
   ScopedTempDir tmp;
-  const ident::CampaignFile f = ident::LoadCampaignFile(
-      WriteCampaign(tmp / "c", "  yaw_drift_deg: [5]\n  circular: [{drift_deg: 0, r_prime: 0.3}]\n"));
+  const ident::CampaignFile f = ident::LoadCampaignFile(WriteCampaign(
+      tmp / "c", "  yaw_drift_deg: [5]\n  circular: [{drift_deg: 0, r_prime: 0.3}]\n"));
   const CampaignRunSummary s = RunCfdCampaign(f, Quiet());
   ASSERT_TRUE(s.complete);
   const ident::CaptiveCampaign c = ident::ReadCampaignH5(s.output);  // validates the schema
@@ -165,8 +168,8 @@ TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
   };
   const double y_plus = last("drift_+5.0deg", 1), y_minus = last("drift_-5.0deg", 1);
   const double n_plus = last("drift_+5.0deg", 2), n_minus = last("drift_-5.0deg", 2);
-  std::printf("drift +-5 deg: Y %.6g / %.6g N, N %.6g / %.6g N m; X(0) %.6g N\n", y_plus, y_minus, n_plus, n_minus,
-              last("drift_+0.0deg", 0));
+  std::printf("drift +-5 deg: Y %.6g / %.6g N, N %.6g / %.6g N m; X(0) %.6g N\n", y_plus, y_minus,
+              n_plus, n_minus, last("drift_+0.0deg", 0));
   // beta > 0 is v < 0: Y > 0 and N > 0 (Y'_v < 0, N'_v < 0), antisymmetric.
   EXPECT_GT(y_plus, 0.0);
   EXPECT_GT(n_plus, 0.0);
@@ -218,13 +221,16 @@ TEST(CfdCampaign, BadCfdSectionIsOneClearError) {
   }
   {
     const fs::path p = tmp / "b.yaml";
-    std::ofstream(p) << "campaign: {name: a, ship: s.yaml, solver: cfd, speed: 1}\n"
-                        "cfd: {case: c.yaml, steps_per_period: 4}\ntests: {pure_sway_v_prime: [0.1]}\n";
+    std::ofstream(p)
+        << "campaign: {name: a, ship: s.yaml, solver: cfd, speed: 1}\n"
+           "cfd: {case: c.yaml, steps_per_period: 4}\ntests: {pure_sway_v_prime: [0.1]}\n";
     try {
       ident::LoadCampaignFile(p);
       FAIL();
     } catch (const ConfigError& e) {
-      EXPECT_THAT(e.what(), HasSubstr("key 'cfd.steps_per_period' = '4': expected at least 8 time steps per period"));
+      EXPECT_THAT(
+          e.what(),
+          HasSubstr("key 'cfd.steps_per_period' = '4': expected at least 8 time steps per period"));
     }
   }
   {

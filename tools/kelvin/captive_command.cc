@@ -45,16 +45,17 @@ void RunCfd(const ident::CampaignFile& file, const CaptiveArgs& a) {
   o.progress = !a.no_progress;
   const cfd::CampaignRunSummary s = cfd::RunCfdCampaign(file, o);
   if (!a.run.empty()) {
-    fmt::print("run '{}': {} ({} steps computed)\n", a.run, s.runs_done == 1 ? "done" : "stopped", s.steps_computed);
+    fmt::print("run '{}': {} ({} steps computed)\n", a.run, s.runs_done == 1 ? "done" : "stopped",
+               s.steps_computed);
     return;
   }
   if (!s.complete) {
-    fmt::print("campaign '{}' stopped after {} steps; run the same command again to resume\n", file.name,
-               s.steps_computed);
+    fmt::print("campaign '{}' stopped after {} steps; run the same command again to resume\n",
+               file.name, s.steps_computed);
     std::exit(4);
   }
-  fmt::print("campaign '{}' ({} runs, solver cfd, {} steps computed now)\n  written: {}\n", file.name, s.runs_total,
-             s.steps_computed, s.output.string());
+  fmt::print("campaign '{}' ({} runs, solver cfd, {} steps computed now)\n  written: {}\n",
+             file.name, s.runs_total, s.steps_computed, s.output.string());
 }
 
 void RunCaptive(const CaptiveArgs& a) {
@@ -69,10 +70,11 @@ void RunCaptive(const CaptiveArgs& a) {
   const ident::CaptiveCampaign campaign = ident::RunCampaign(file);
   const std::string out = a.output.empty() ? "results/" + file.name + ".h5" : a.output;
   ident::WriteCampaignH5(campaign, out);
-  fmt::print("campaign '{}' ({} runs, solver mmg: virtual captive tests of {})\n", file.name, campaign.runs.size(),
-             file.ship_file.string());
+  fmt::print("campaign '{}' ({} runs, solver mmg: virtual captive tests of {})\n", file.name,
+             campaign.runs.size(), file.ship_file.string());
   for (const auto& run : campaign.runs) {
-    fmt::print("  {:<24} {:<16} {} samples\n", run.name, ident::MotionKindName(run.motion.kind), run.time.size());
+    fmt::print("  {:<24} {:<16} {} samples\n", run.name, ident::MotionKindName(run.motion.kind),
+               run.time.size());
   }
   fmt::print("  written: {}\n", out);
 }
@@ -81,13 +83,15 @@ void RunCaptive(const CaptiveArgs& a) {
 
 Command AddCaptiveCommand(CLI::App& app) {
   auto args = std::make_shared<CaptiveArgs>();
-  CLI::App* cmd = app.add_subcommand("captive", "Run a captive test campaign and write its force histories");
+  CLI::App* cmd =
+      app.add_subcommand("captive", "Run a captive test campaign and write its force histories");
   cmd->add_option("campaign", args->campaign_file, "Campaign file (data/cases/<campaign>.yaml)")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output,
                   "Campaign HDF5 (default results/<name>.h5; cfd: <cfd.directory>/<name>.h5)");
-  cmd->add_option("-j,--jobs", args->jobs, "cfd: runs at the same time (default: cfd.jobs of the file)")
+  cmd->add_option("-j,--jobs", args->jobs,
+                  "cfd: runs at the same time (default: cfd.jobs of the file)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--stop-after-steps", args->stop_after_steps,
                   "cfd: stop as if killed after this many time steps (resume by running again)")

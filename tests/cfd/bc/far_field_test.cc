@@ -1,9 +1,8 @@
 // Coefficients of the far-field conditions decided by the relative flux
 // (OutletInlet, FarField), and the block obstacle of the box mesh.
-#include "cfd/bc/outlet_inlet.h"
-
 #include <gtest/gtest.h>
 
+#include "cfd/bc/outlet_inlet.h"
 #include "cfd/mesh/box_mesh.h"
 
 namespace kelvin::cfd {
@@ -19,9 +18,9 @@ TEST(OutletInlet, FixedWhereTheFlowLeavesZeroGradientWhereItEnters) {
   const Mesh mesh = UnitBox();
   const Patch& patch = mesh.patches()[1];  // xmax, 4 faces of area 0.25
   std::vector<double> flux(mesh.n_faces(), 0.0);
-  flux[patch.start] = 0.1;        // out
-  flux[patch.start + 1] = -0.1;   // in
-  flux[patch.start + 2] = 0.0;    // no flow: zero gradient
+  flux[patch.start] = 0.1;       // out
+  flux[patch.start + 1] = -0.1;  // in
+  flux[patch.start + 2] = 0.0;   // no flow: zero gradient
   OutletInlet<double> bc(2.5);
   std::vector<double> cells(mesh.n_cells(), 0.0);
   bc.Update(BcContext{mesh, patch, 0.0, flux}, cells);

@@ -60,7 +60,8 @@ struct Sample {
 };
 
 // Runs a case and returns the ship-axis loads on the obstacle at every step.
-std::vector<Sample> RunCaseText(const std::string& yaml, const Vector3& initial_velocity = Vector3::Zero()) {
+std::vector<Sample> RunCaseText(const std::string& yaml,
+                                const Vector3& initial_velocity = Vector3::Zero()) {
   const auto root = data::ConfigNode::LoadString(yaml, "captive_motion_test.yaml");
   Case c = LoadCase(root, ".");
   for (Vector3& u : c.solver->U().values()) u = initial_velocity;
@@ -82,14 +83,16 @@ std::vector<Sample> RunCaseText(const std::string& yaml, const Vector3& initial_
 double Unsteadiness(const std::vector<Sample>& s, int window, double PlanarLoad::*channel) {
   const double last = s.back().load.*channel;
   double worst = 0.0;
-  for (std::size_t i = s.size() - window; i < s.size(); ++i) worst = std::max(worst, std::abs(s[i].load.*channel - last));
+  for (std::size_t i = s.size() - window; i < s.size(); ++i)
+    worst = std::max(worst, std::abs(s[i].load.*channel - last));
   return worst / std::abs(last);
 }
 
 TEST(CaptiveMotion, TowedInStillWaterEqualsUniformInflowOnAFixedMesh) {
   const std::string time = "time: {dt: 0.05, end: 25}\n";
   // Earth frame: the block moves at 1 m/s along +x from rest in still water.
-  const auto moving = RunCaseText(MovingCase("motion: {kind: static_drift, speed: 1.0, ramp_time: 0}\n", time));
+  const auto moving =
+      RunCaseText(MovingCase("motion: {kind: static_drift, speed: 1.0, ramp_time: 0}\n", time));
   // Body frame: the water comes at -1 m/s from the bow side (xmax); the same
   // water at rest in the earth frame is u = -1 m/s at the start.
   const auto fixed = RunCaseText(std::string(kMesh) + time + R"(boundary:
@@ -98,14 +101,16 @@ TEST(CaptiveMotion, TowedInStillWaterEqualsUniformInflowOnAFixedMesh) {
   ymin: {U: {type: farField, inflow: [-1, 0, 0], band: 0.3}, p: {type: farField, value: 0, band: 0.3}}
   ymax: {U: {type: farField, inflow: [-1, 0, 0], band: 0.3}, p: {type: farField, value: 0, band: 0.3}}
   obstacle: {U: {type: noSlip}, p: {type: zeroGradient}}
-)", Vector3(-1, 0, 0));
+)",
+                                 Vector3(-1, 0, 0));
   ASSERT_EQ(moving.size(), fixed.size());
   const double x_moving = moving.back().load.X, x_fixed = fixed.back().load.X;
   const double rel = std::abs(x_moving - x_fixed) / std::abs(x_fixed);
   const double steady = Unsteadiness(fixed, 40, &PlanarLoad::X);
-  std::printf("steady drag: moving mesh %.10g N, fixed mesh %.10g N, relative difference %.3g; C_D = %.4f; "
-              "change over the last 2 s %.2g\n",
-              x_moving, x_fixed, rel, -x_fixed / (0.5 * kRho * 0.5 * 1.0), steady);
+  std::printf(
+      "steady drag: moving mesh %.10g N, fixed mesh %.10g N, relative difference %.3g; C_D = %.4f; "
+      "change over the last 2 s %.2g\n",
+      x_moving, x_fixed, rel, -x_fixed / (0.5 * kRho * 0.5 * 1.0), steady);
   EXPECT_LT(x_fixed, 0.0);  // resistance: the force on the body points aft
   EXPECT_LT(steady, 2e-3);  // steady
   EXPECT_LT(rel, 0.002);    // acceptance: within 0.2 %
@@ -116,16 +121,18 @@ TEST(CaptiveMotion, TowedInStillWaterEqualsUniformInflowOnAFixedMesh) {
 TEST(CaptiveMotion, StaticDriftIsSymmetric) {
   const std::string time = "time: {dt: 0.05, end: 20}\n";
   auto drift = [&](double deg) {
-    return RunCaseText(MovingCase(
-        "motion: {kind: static_drift, speed: 1.0, ramp_time: 2.0, drift_angle_deg: " + std::to_string(deg) + "}\n",
-        time));
+    return RunCaseText(
+        MovingCase("motion: {kind: static_drift, speed: 1.0, ramp_time: 2.0, drift_angle_deg: " +
+                       std::to_string(deg) + "}\n",
+                   time));
   };
   const auto plus = drift(10.0), minus = drift(-10.0);
   const PlanarLoad p = plus.back().load, m = minus.back().load;
   const double dy = std::abs(p.Y + m.Y) / std::max(std::abs(p.Y), std::abs(m.Y));
   const double dn = std::abs(p.N + m.N) / std::max(std::abs(p.N), std::abs(m.N));
   const double dx = std::abs(p.X - m.X) / std::max(std::abs(p.X), std::abs(m.X));
-  std::printf("drift +10: X %.6g Y %.6g N %.6g;  drift -10: X %.6g Y %.6g N %.6g\n", p.X, p.Y, p.N, m.X, m.Y, m.N);
+  std::printf("drift +10: X %.6g Y %.6g N %.6g;  drift -10: X %.6g Y %.6g N %.6g\n", p.X, p.Y, p.N,
+              m.X, m.Y, m.N);
   std::printf("asymmetry: Y %.3g, N %.3g, X %.3g; unsteadiness of Y %.2g\n", dy, dn, dx,
               Unsteadiness(plus, 40, &PlanarLoad::Y));
   EXPECT_LT(Unsteadiness(plus, 40, &PlanarLoad::Y), 1e-3);
@@ -141,7 +148,8 @@ TEST(CaptiveMotion, StaticDriftIsSymmetric) {
 
 // Largest change of the loads between the last two periods, relative to the
 // range of each channel.
-double PeriodChange(const std::vector<Sample>& s, int steps_per_period, double PlanarLoad::*channel) {
+double PeriodChange(const std::vector<Sample>& s, int steps_per_period,
+                    double PlanarLoad::*channel) {
   const std::size_t n = s.size();
   double lo = 1e300, hi = -1e300, change = 0.0;
   for (std::size_t i = n - steps_per_period; i < n; ++i) {
@@ -158,15 +166,21 @@ TEST(CaptiveMotion, PureSwayAndPureYawArePeriodicAfterTheRamp) {
   // of ramp-up then four (sway) or six (yaw) periods: the start-up transient
   // decays by a factor of about 2.5 (sway) and 2 (yaw) per period.
   const std::string time = "time: {dt: 0.05}\n";
-  const auto sway = RunCaseText(MovingCase(
-      "motion: {kind: pure_sway, speed: 1.0, sway_amplitude: 0.1, period: 4.0, ramp_time: 4.0, periods: 4}\n", time));
-  const auto yaw = RunCaseText(MovingCase(
-      "motion: {kind: pure_yaw, speed: 1.0, yaw_amplitude_deg: 5, period: 4.0, ramp_time: 4.0, periods: 6}\n", time));
+  const auto sway =
+      RunCaseText(MovingCase("motion: {kind: pure_sway, speed: 1.0, sway_amplitude: 0.1, period: "
+                             "4.0, ramp_time: 4.0, periods: 4}\n",
+                             time));
+  const auto yaw =
+      RunCaseText(MovingCase("motion: {kind: pure_yaw, speed: 1.0, yaw_amplitude_deg: 5, period: "
+                             "4.0, ramp_time: 4.0, periods: 6}\n",
+                             time));
   ASSERT_EQ(sway.size(), 400u);
-  const double sway_y = PeriodChange(sway, 80, &PlanarLoad::Y), sway_n = PeriodChange(sway, 80, &PlanarLoad::N);
-  const double yaw_y = PeriodChange(yaw, 80, &PlanarLoad::Y), yaw_n = PeriodChange(yaw, 80, &PlanarLoad::N);
-  std::printf("period-to-period change (of the range): sway Y %.3g N %.3g; yaw Y %.3g N %.3g\n", sway_y, sway_n, yaw_y,
-              yaw_n);
+  const double sway_y = PeriodChange(sway, 80, &PlanarLoad::Y),
+               sway_n = PeriodChange(sway, 80, &PlanarLoad::N);
+  const double yaw_y = PeriodChange(yaw, 80, &PlanarLoad::Y),
+               yaw_n = PeriodChange(yaw, 80, &PlanarLoad::N);
+  std::printf("period-to-period change (of the range): sway Y %.3g N %.3g; yaw Y %.3g N %.3g\n",
+              sway_y, sway_n, yaw_y, yaw_n);
   EXPECT_LT(sway_y, 0.01);
   EXPECT_LT(sway_n, 0.01);
   EXPECT_LT(yaw_y, 0.01);

@@ -62,7 +62,8 @@ TEST(MeshPlacement, FollowsThePoseFromTheBodyFixedGeometry) {
       ASSERT_LT((mesh.cell_centres()[c] - (R * xi[c] + tr)).norm(), 1e-15);
       ASSERT_EQ(mesh.cell_volumes()[c], vol[c]);
     }
-    for (int f = 0; f < mesh.n_faces(); ++f) ASSERT_LT((mesh.face_areas()[f] - R * sf[f]).norm(), 1e-16);
+    for (int f = 0; f < mesh.n_faces(); ++f)
+      ASSERT_LT((mesh.face_areas()[f] - R * sf[f]).norm(), 1e-16);
     EXPECT_NEAR(mesh.Quality().max_non_orthogonality, non_orth, 1e-9);
   }
   mesh.SetPlacement(Eigen::Matrix3d::Identity(), Vector3::Zero());
@@ -86,7 +87,8 @@ TEST(MeshFlux, SatisfiesTheSpaceConservationLawToRoundOff) {
           abs_sum[mesh.neighbour()[f]] += std::abs(flux[f]);
         }
       }
-      for (int c = 0; c < mesh.n_cells(); ++c) worst = std::max(worst, std::abs(sum[c]) / abs_sum[c]);
+      for (int c = 0; c < mesh.n_cells(); ++c)
+        worst = std::max(worst, std::abs(sum[c]) / abs_sum[c]);
     }
     EXPECT_LT(worst, 1e-14) << (polyhedral ? "polyhedral" : "hexahedral");
   }
@@ -100,7 +102,8 @@ TEST(MeshFlux, IsTheRigidBodyVelocityThroughPlanarFaces) {
   motion.Apply(t, flux);
   const MovingWall::Motion wall = motion.WallMotion(t);
   for (int f = 0; f < mesh.n_faces(); ++f) {
-    const Vector3 ub = wall.velocity + wall.angular_velocity.cross(mesh.face_centres()[f] - wall.centre);
+    const Vector3 ub =
+        wall.velocity + wall.angular_velocity.cross(mesh.face_centres()[f] - wall.centre);
     ASSERT_NEAR(flux[f], ub.dot(mesh.face_areas()[f]), 1e-15) << "face " << f;
   }
 }
@@ -109,10 +112,10 @@ TEST(MeshFlux, IsTheRigidBodyVelocityThroughPlanarFaces) {
 // conditions decided by the relative flux.
 double FreeStreamError(Mesh& mesh, const Vector3& current, int steps) {
   const RigidMeshMotion motion(mesh, RigidMotion(SurgeSwayYaw()));
-  auto U = testing::MakeField<Vector3>("U", mesh, [&](const Patch&) {
-    return std::make_unique<InletOutlet<Vector3>>(current);
-  });
-  auto p = testing::MakeField<double>("p", mesh, [](const Patch&) { return std::make_unique<OutletInlet<double>>(0.0); });
+  auto U = testing::MakeField<Vector3>(
+      "U", mesh, [&](const Patch&) { return std::make_unique<InletOutlet<Vector3>>(current); });
+  auto p = testing::MakeField<double>(
+      "p", mesh, [](const Patch&) { return std::make_unique<OutletInlet<double>>(0.0); });
   for (Vector3& u : U->values()) u = current;
   SchemeOptions schemes;
   schemes.gradient.scheme = GradientScheme::kLeastSquares;
@@ -135,20 +138,23 @@ double FreeStreamError(Mesh& mesh, const Vector3& current, int steps) {
 }
 
 TEST(FreeStream, StillWaterStaysAtRestUnderSurgeSwayYaw) {
-  for (const auto& [polyhedral, perturbation] : {std::pair{false, 0.0}, std::pair{false, 0.25}, std::pair{true, 0.2}}) {
+  for (const auto& [polyhedral, perturbation] :
+       {std::pair{false, 0.0}, std::pair{false, 0.25}, std::pair{true, 0.2}}) {
     Mesh mesh = Box(polyhedral, perturbation);
     const double err = FreeStreamError(mesh, Vector3::Zero(), 100);
-    std::printf("still water, polyhedral %d perturbation %.2f: max |u| = %.3g m/s\n", polyhedral, perturbation, err);
+    std::printf("still water, polyhedral %d perturbation %.2f: max |u| = %.3g m/s\n", polyhedral,
+                perturbation, err);
     EXPECT_LT(err, 1e-10) << "polyhedral " << polyhedral << " perturbation " << perturbation;
   }
 }
 
 TEST(FreeStream, UniformCurrentStaysUniformUnderSurgeSwayYaw) {
-  for (const auto& [polyhedral, perturbation] : {std::pair{false, 0.0}, std::pair{false, 0.25}, std::pair{true, 0.2}}) {
+  for (const auto& [polyhedral, perturbation] :
+       {std::pair{false, 0.0}, std::pair{false, 0.25}, std::pair{true, 0.2}}) {
     Mesh mesh = Box(polyhedral, perturbation);
     const double err = FreeStreamError(mesh, Vector3(0.4, -0.3, 0.0), 100);
-    std::printf("uniform current, polyhedral %d perturbation %.2f: max |u - U_c| = %.3g m/s\n", polyhedral,
-                perturbation, err);
+    std::printf("uniform current, polyhedral %d perturbation %.2f: max |u - U_c| = %.3g m/s\n",
+                polyhedral, perturbation, err);
     EXPECT_LT(err, 1e-10) << "polyhedral " << polyhedral << " perturbation " << perturbation;
   }
 }

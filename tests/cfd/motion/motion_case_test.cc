@@ -53,7 +53,8 @@ TEST(MotionCase, HistoryHoldsShipAxisLoadsAndTheMotion) {
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
   EXPECT_EQ(s.steps, 80);  // ramp 0.5 s -> first boundary at 2 s, one period: end 4 s
   const data::H5Reader r(tmp / "out/history.h5");
-  const data::Series y = r.Read("captive/Y"), n = r.Read("captive/N"), yp = r.Read("captive/Y_prime");
+  const data::Series y = r.Read("captive/Y"), n = r.Read("captive/N"),
+                     yp = r.Read("captive/Y_prime");
   const data::Series psi = r.Read("captive/psi"), t = r.Read("captive/time");
   EXPECT_EQ(y.units, "N");
   EXPECT_EQ(n.units, "N m");
@@ -61,10 +62,12 @@ TEST(MotionCase, HistoryHoldsShipAxisLoadsAndTheMotion) {
   const double scale = 0.5 * 1000.0 * 1.0 * 1.0 * 1.0;
   for (std::size_t i = 0; i < y.rows; ++i) {
     EXPECT_DOUBLE_EQ(yp.values[i], y.values[i] / scale);
-    EXPECT_DOUBLE_EQ(r.Read("captive/Y_pressure").values[i] + r.Read("captive/Y_viscous").values[i], y.values[i]);
+    EXPECT_DOUBLE_EQ(r.Read("captive/Y_pressure").values[i] + r.Read("captive/Y_viscous").values[i],
+                     y.values[i]);
   }
   // psi = beta + psi_a cos(omega t) after the ramp.
-  EXPECT_NEAR(psi.values.back(), (5.0 + 10.0 * std::cos(M_PI * t.values.back())) * M_PI / 180.0, 1e-12);
+  EXPECT_NEAR(psi.values.back(), (5.0 + 10.0 * std::cos(M_PI * t.values.back())) * M_PI / 180.0,
+              1e-12);
   // The VTU shows the mesh where it is: the last field file exists.
   EXPECT_TRUE(fs::exists(tmp / "out/fields.pvd"));
 }
@@ -89,9 +92,11 @@ TEST(MotionCase, RestartOfAMovingMeshContinuesBitForBit) {
   const RunSummary s = RunCase(Write(tmp.path(), kCase), o);
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted);
   EXPECT_EQ(s.steps, 40);
-  const std::vector<double> y_restarted = data::H5Reader(tmp / "restarted/history.h5").Read("captive/Y").values;
+  const std::vector<double> y_restarted =
+      data::H5Reader(tmp / "restarted/history.h5").Read("captive/Y").values;
   ASSERT_EQ(y_restarted.size(), 40u);
-  for (std::size_t i = 0; i < 40; ++i) EXPECT_EQ(y_restarted[i], y_whole[40 + i]) << "step " << 41 + i;
+  for (std::size_t i = 0; i < 40; ++i)
+    EXPECT_EQ(y_restarted[i], y_whole[40 + i]) << "step " << 41 + i;
 }
 
 struct BadCase {
@@ -119,16 +124,19 @@ TEST_P(BadMotionCaseTest, IsOneClearError) {
 
 INSTANTIATE_TEST_SUITE_P(
     Inputs, BadMotionCaseTest,
-    ::testing::Values(
-        BadCase{"time: {dt: 0.05}", "time: {dt: 0.05, end: 3}",
-                "key 'time.end' = '3': expected no end time: motion.periods sets it"},
-        BadCase{"motion: {kind: yaw_drift,", "motion: {kind: yaw_drift, sway_amplitude: 1,",
-                "unknown key 'motion.sway_amplitude'"},
-        BadCase{"obstacle: {min: [10, 5, 0], max: [14, 7, 1]}", "obstacle: {min: [10, 5, 0], max: [24, 7, 1]}",
-                "obstacle blocks [10, 24) along axis 0; expected within [0, 20]"},
-        BadCase{"band: 0.3}, p: {type: farField, value: 0, band: 0.3}}\n  xmax",
-                "band: -1}, p: {type: farField, value: 0, band: 0.3}}\n  xmax", "key 'boundary.xmin.U.band' = '-1'"},
-        BadCase{"captive: {length: 1.0, draft: 1.0}", "captive: {length: 1.0}", "missing required key 'output.captive.draft'"}));
+    ::testing::Values(BadCase{"time: {dt: 0.05}", "time: {dt: 0.05, end: 3}",
+                              "key 'time.end' = '3': expected no end time: motion.periods sets it"},
+                      BadCase{"motion: {kind: yaw_drift,",
+                              "motion: {kind: yaw_drift, sway_amplitude: 1,",
+                              "unknown key 'motion.sway_amplitude'"},
+                      BadCase{"obstacle: {min: [10, 5, 0], max: [14, 7, 1]}",
+                              "obstacle: {min: [10, 5, 0], max: [24, 7, 1]}",
+                              "obstacle blocks [10, 24) along axis 0; expected within [0, 20]"},
+                      BadCase{"band: 0.3}, p: {type: farField, value: 0, band: 0.3}}\n  xmax",
+                              "band: -1}, p: {type: farField, value: 0, band: 0.3}}\n  xmax",
+                              "key 'boundary.xmin.U.band' = '-1'"},
+                      BadCase{"captive: {length: 1.0, draft: 1.0}", "captive: {length: 1.0}",
+                              "missing required key 'output.captive.draft'"}));
 
 TEST(MotionCase, MovingWallVelocityNeedsAMotion) {
   kelvin::testing::ScopedTempDir tmp;
@@ -142,8 +150,10 @@ TEST(MotionCase, MovingWallVelocityNeedsAMotion) {
     RunCase(Write(tmp.path(), text), o);
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("key 'boundary.obstacle.U.type' = 'movingWallVelocity': expected a condition "
-                                    "other than movingWallVelocity: it needs a motion: section"));
+    EXPECT_THAT(
+        e.what(),
+        HasSubstr("key 'boundary.obstacle.U.type' = 'movingWallVelocity': expected a condition "
+                  "other than movingWallVelocity: it needs a motion: section"));
   }
 }
 

@@ -29,7 +29,9 @@ MotionOptions Options(PrescribedMotion kind) {
     o.drift_angle = 7.0 * kDeg;
   }
   o.sway_amplitude = kind == PrescribedMotion::kPureSway ? 0.2 : 0.0;
-  o.yaw_amplitude = (kind == PrescribedMotion::kPureYaw || kind == PrescribedMotion::kYawDrift) ? 8.0 * kDeg : 0.0;
+  o.yaw_amplitude = (kind == PrescribedMotion::kPureYaw || kind == PrescribedMotion::kYawDrift)
+                        ? 8.0 * kDeg
+                        : 0.0;
   o.yaw_rate = kind == PrescribedMotion::kCircularMotion ? 0.25 : 0.0;
   return o;
 }
@@ -53,8 +55,9 @@ TEST_P(EveryMotion, RatesAreTheDerivativesOfThePose) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, EveryMotion,
-                         ::testing::Values(PrescribedMotion::kStaticDrift, PrescribedMotion::kPureSway,
-                                           PrescribedMotion::kPureYaw, PrescribedMotion::kYawDrift,
+                         ::testing::Values(PrescribedMotion::kStaticDrift,
+                                           PrescribedMotion::kPureSway, PrescribedMotion::kPureYaw,
+                                           PrescribedMotion::kYawDrift,
                                            PrescribedMotion::kCircularMotion));
 
 TEST(RigidMotion, LawsAfterTheRamp) {
@@ -138,8 +141,10 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadMotion{"motion: {kind: zigzag, speed: 1}",
                   "key 'motion.kind' = 'zigzag': expected one of static_drift, pure_sway"},
-        BadMotion{"motion: {kind: static_drift, speed: 1, sway_amplitude: 0.1}", "unknown key 'motion.sway_amplitude'"},
-        BadMotion{"motion: {kind: pure_sway, speed: -1, sway_amplitude: 0.1, period: 4}", "motion.speed"},
+        BadMotion{"motion: {kind: static_drift, speed: 1, sway_amplitude: 0.1}",
+                  "unknown key 'motion.sway_amplitude'"},
+        BadMotion{"motion: {kind: pure_sway, speed: -1, sway_amplitude: 0.1, period: 4}",
+                  "motion.speed"},
         BadMotion{"motion: {kind: pure_sway, speed: 1, period: 4}", "motion.sway_amplitude"},
         BadMotion{"motion: {kind: pure_yaw, speed: 1, period: 4, yaw_amplitude_deg: 95}",
                   "motion.yaw_amplitude_deg = 95: expected an amplitude in (0, 90) degrees"},
@@ -149,8 +154,7 @@ INSTANTIATE_TEST_SUITE_P(
                   "motion.yaw_rate = 0: expected a finite non-zero yaw rate"},
         BadMotion{"motion: {kind: static_drift, speed: 1, drift_angle_deg: 91}",
                   "motion.drift_angle_deg = 91: expected |angle| < 90 degrees"},
-        BadMotion{"motion: {kind: static_drift, speed: 1, centre: [0, 1]}",
-                  "motion.centre"}));
+        BadMotion{"motion: {kind: static_drift, speed: 1, centre: [0, 1]}", "motion.centre"}));
 
 }  // namespace
 }  // namespace kelvin::cfd
