@@ -39,16 +39,21 @@ std::vector<double> PositiveList(const data::ConfigNode& node, const char* key) 
 
 CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
   const auto root = data::ConfigNode::LoadFile(path);
-  root.ExpectKeys({"campaign", "tests", "sampling"});
+  root.ExpectKeys({"campaign", "tests", "sampling", "cfd"});
   CampaignFile f;
+  f.path = path;
   const auto c = root["campaign"];
   c.ExpectKeys({"name", "ship", "solver", "speed", "noise", "seed"});
   f.name = c.Get<std::string>("name");
   f.ship_file = c.Get<std::string>("ship");
   if (f.ship_file.is_relative()) f.ship_file = path.parent_path() / f.ship_file;
   const std::string solver = c.Get<std::string>("solver", "mmg");
-  if (solver != "mmg") {
-    c["solver"].Fail("'mmg' (virtual captive tests from the ship's MMG model; the LFS CFD solver is not available yet)");
+  if (solver == "cfd") {
+    f.solver = CampaignFile::Solver::kCfd;
+  } else if (solver != "mmg") {
+    c["solver"].Fail(
+        "'mmg' (virtual captive tests from the ship's MMG model) or 'cfd' (double-body CFD runs of the "
+        "cfd: section; the linearized free surface of 'lfs' is not available yet)");
   }
   f.speed = c.Get<double>("speed", 0.0);
   if (f.speed < 0) c["speed"].Fail("a positive speed in m/s");
@@ -60,7 +65,7 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
 
   const auto t = root["tests"];
   t.ExpectKeys({"static_drift_deg", "pure_sway_v_prime", "pure_yaw_r_prime", "yaw_drift_deg", "yaw_drift_r_prime",
-                "omega_prime"});
+                "omega_prime", "circular"});
   f.design.drift_angles = Degrees(t, "static_drift_deg");
   f.design.sway_amplitudes = PositiveList(t, "pure_sway_v_prime");
   f.design.yaw_amplitudes = PositiveList(t, "pure_yaw_r_prime");
@@ -68,9 +73,20 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
   f.design.yaw_drift_amplitude = t.Get<double>("yaw_drift_r_prime", 0.4);
   f.design.omega_prime = t.Get<double>("omega_prime", 3.0);
   if (!(f.design.omega_prime > 0)) t["omega_prime"].Fail("a positive nondimensional frequency");
+  if (auto circ = t.Find("circular")) {
+    // Circular motion (rotating arm): [{drift_deg: 0, r_prime: 0.3}, ...]
+    for (const auto& item : circ->Items()) {
+      item.ExpectKeys({"drift_deg", "r_prime"});
+      const double beta = item.Get<double>("drift_deg", 0.0);
+      if (std::abs(beta) >= 90) item["drift_deg"].Fail("an angle in degrees with |angle| < 90");
+      const double r = item.Get<double>("r_prime");
+      if (!(std::isfinite(r) && r != 0)) item["r_prime"].Fail("a non-zero yaw rate r' = r Lpp / U");
+      f.design.circular.push_back({beta * kDeg, r});
+    }
+  }
   if (f.design.drift_angles.empty() && f.design.sway_amplitudes.empty() && f.design.yaw_amplitudes.empty() &&
-      f.design.yaw_drift_angles.empty()) {
-    t.Fail("at least one test (static_drift_deg, pure_sway_v_prime, pure_yaw_r_prime or yaw_drift_deg)");
+      f.design.yaw_drift_angles.empty() && f.design.circular.empty()) {
+    t.Fail("at least one test (static_drift_deg, pure_sway_v_prime, pure_yaw_r_prime, yaw_drift_deg or circular)");
   }
   if (auto s = root.Find("sampling")) {
     s->ExpectKeys({"samples_per_period", "periods", "ramp_periods"});
@@ -83,10 +99,63 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
       s->Fail(std::string("valid sampling (") + e.what() + ")");
     }
   }
+  if (f.solver == CampaignFile::Solver::kCfd) {
+    if (f.noise > 0) c["noise"].Fail("0: noise is for the mmg solver only");
+    const auto n = root["cfd"];
+    n.ExpectKeys({"case", "hull_patches", "centre", "draft", "steps_per_period", "steady_ramp", "steady_duration",
+                  "checkpoint_interval", "jobs", "directory"});
+    CampaignFile::Cfd& cfd = f.cfd;
+    cfd.case_file = n.Get<std::string>("case");
+    if (cfd.case_file.is_relative()) cfd.case_file = path.parent_path() / cfd.case_file;
+    if (auto h = n.Find("hull_patches")) {
+      for (const auto& item : h->Items()) cfd.hull_patches.push_back(item.As<std::string>());
+    }
+    if (n.Has("centre")) {
+      const std::vector<double> v = n["centre"].As<std::vector<double>>();
+      if (v.size() != 3) n["centre"].Fail("a list of 3 coordinates in m (grid axes)");
+      cfd.centre = {v[0], v[1], v[2]};
+    }
+    cfd.draft = n.Has("draft") ? n.GetPositive("draft") : 0.0;
+    cfd.steps_per_period = n.Get<int>("steps_per_period", cfd.steps_per_period);
+    if (cfd.steps_per_period < 8) n["steps_per_period"].Fail("at least 8 time steps per period");
+    if (n.Has("steady_ramp")) cfd.steady_ramp = n.GetPositive("steady_ramp");
+    if (n.Has("steady_duration")) cfd.steady_duration = n.GetPositive("steady_duration");
+    cfd.checkpoint_interval = n.Get<int>("checkpoint_interval", cfd.checkpoint_interval);
+    if (cfd.checkpoint_interval < 1) n["checkpoint_interval"].Fail("a number of steps >= 1");
+    cfd.jobs = n.Get<int>("jobs", cfd.jobs);
+    if (cfd.jobs < 1) n["jobs"].Fail("a number of concurrent runs >= 1");
+    cfd.directory = n.Get<std::string>("directory", "results/" + f.name);
+    if (cfd.directory.is_relative()) cfd.directory = path.parent_path() / cfd.directory;
+    f.sampling.steady_ramp = cfd.steady_ramp;
+    f.sampling.steady_duration = cfd.steady_duration;
+    f.sampling.include_rigid_body_inertia = false;
+  } else if (root.Has("cfd")) {
+    root["cfd"].Fail("no cfd: section (it belongs to campaigns with solver: cfd)");
+  }
   return f;
 }
 
+CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file) {
+  const auto root = data::ConfigNode::LoadFile(ship_file);
+  CaptiveShip s;
+  s.name = root["ship"].Get<std::string>("name");
+  const auto p = root["principal"];
+  p.ExpectKeys({"Lpp", "B", "d", "displacement", "x_G", "k_zz", "rho", "nu", "wetted_area"});
+  s.Lpp = p.GetPositive("Lpp");
+  s.B = p.GetPositive("B");
+  s.d = p.GetPositive("d");
+  s.rho = p.GetPositive("rho");
+  s.mass = s.rho * p.GetPositive("displacement");
+  s.x_G = p.Get<double>("x_G", 0.0);
+  const double k_zz = p.Has("k_zz") ? p.GetPositive("k_zz") : 0.25;
+  s.I_zG = s.mass * (k_zz * s.Lpp) * (k_zz * s.Lpp);
+  return s;
+}
+
 CaptiveCampaign RunCampaign(const CampaignFile& f) {
+  if (f.solver != CampaignFile::Solver::kMmg) {
+    throw ConfigError(f.name + ": RunCampaign runs the mmg solver; cfd campaigns run through cfd/campaign");
+  }
   const sim::ShipParameters ship = sim::LoadShip(f.ship_file);
   CampaignDesign design = f.design;
   design.U = f.speed > 0 ? f.speed : ship.approach_speed;

@@ -15,14 +15,35 @@
 //     yaw_drift_deg: [6, 12]
 //     yaw_drift_r_prime: 0.4
 //     omega_prime: 3.0                   # omega Lpp / U of the harmonic runs
+//     circular: [{drift_deg: 0, r_prime: 0.3}]   # rotating arm (steady)
 //   sampling: {samples_per_period: 200, periods: 5, ramp_periods: 1}
 //
-// The LFS CFD solver (`solver: lfs`) joins with the captive CFD stage.
+// With `solver: cfd` every run is a `kelvin run` case with the prescribed
+// motion (double body, no free surface yet), run by cfd/campaign:
+//
+//   campaign: {name: block, ship: block_ship.yaml, solver: cfd, speed: 1.0}
+//   cfd:
+//     case: block_case.yaml        # kelvin run case without motion/time.end (relative to this file)
+//     hull_patches: [obstacle]     # default: the case's output.forces
+//     centre: [0, 0, 0]            # midship in grid axes (m), N is about it
+//     draft: 1.0                   # T of the prime system (default: the ship's d)
+//     steps_per_period: 80         # harmonic runs: dt = period / steps_per_period
+//     steady_ramp: 2.0             # s, start-up of steady runs
+//     steady_duration: 10.0        # s, steady runs after the ramp (dt from the case)
+//     checkpoint_interval: 50      # steps
+//     jobs: 1                      # runs executed at the same time (processes)
+//     directory: runs/block        # run directories (default results/<name>, relative to this file)
+//   tests: (as above)
+//   sampling: {periods: 3, ramp_periods: 1}   # samples_per_period is not used
+//
+// For `cfd` the ship file needs only its `ship` and `principal` sections.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "identification/virtual_captive.h"
 
@@ -31,20 +52,43 @@ namespace kelvin::ident {
 struct CampaignFile {
   std::string name;
   std::filesystem::path ship_file;
-  enum class Solver { kMmg };
+  enum class Solver { kMmg, kCfd };
   Solver solver = Solver::kMmg;
   double speed = 0;  // m/s; 0 = the ship's approach speed
   double noise = 0;
   std::uint64_t seed = 1;
   CampaignDesign design;
   VirtualCaptiveOptions sampling;
+
+  // The `cfd:` section (solver cfd only).
+  struct Cfd {
+    std::filesystem::path case_file;
+    std::vector<std::string> hull_patches;  // empty: the case's output.forces
+    std::array<double, 3> centre = {0.0, 0.0, 0.0};  // m, grid axes
+    double draft = 0;  // m; 0 = the ship's d
+    int steps_per_period = 80;
+    double steady_ramp = 2.0;       // s
+    double steady_duration = 10.0;  // s
+    int checkpoint_interval = 50;   // steps
+    int jobs = 1;
+    std::filesystem::path directory;  // run directories
+  };
+  Cfd cfd;
+  std::filesystem::path path;  // the campaign file
 };
+
+// The ship data of a campaign from the `ship` and `principal` sections of a
+// ship file (mass = rho displacement, I_zG = mass (k_zz Lpp)^2 with k_zz 0.25
+// unless given); other sections are not read. Throws ConfigError.
+CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file);
+
 
 // Reads and validates a campaign file; every unknown key or bad value is a
 // kelvin::ConfigError naming the file, line, key and what was expected.
 CampaignFile LoadCampaignFile(const std::filesystem::path& path);
 
-// Runs the campaign with its solver and returns the captive runs.
+// Runs the campaign with the MMG solver and returns the captive runs (the
+// cfd solver runs through cfd/campaign/cfd_campaign.h).
 CaptiveCampaign RunCampaign(const CampaignFile& file);
 
 }  // namespace kelvin::ident

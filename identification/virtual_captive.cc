@@ -128,54 +128,55 @@ CampaignDesign StandardDesign(double U, bool combined) {
   return d;
 }
 
-CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model, const CampaignDesign& design,
-                                 const VirtualCaptiveOptions& options) {
+std::vector<PlannedRun> PlanRuns(const CampaignDesign& design, double L, const VirtualCaptiveOptions& options) {
   design.Validate();
   constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-  const double L = model.ship().principal.Lpp;
   const double omega = design.omega_prime * design.U / L;
+  std::vector<PlannedRun> runs;
+  auto add = [&](std::string name, MotionParameters m) {
+    m.t_ramp = IsHarmonic(m.kind) ? options.ramp_periods * m.Period() : options.steady_ramp;
+    runs.push_back({std::move(name), m});
+  };
+  for (double beta : design.drift_angles) {
+    add(fmt::format("drift_{:+.1f}deg", beta * kRadToDeg),
+        MotionParameters{.kind = MotionKind::kStaticDrift, .U = design.U, .beta = beta});
+  }
+  for (double v_a : design.sway_amplitudes) {
+    add(fmt::format("sway_v{:.3f}", v_a), MotionParameters{.kind = MotionKind::kPureSway,
+                                                           .U = design.U,
+                                                           .y_a = v_a * design.U / omega,
+                                                           .omega = omega});
+  }
+  for (double r_a : design.yaw_amplitudes) {
+    add(fmt::format("yaw_r{:.3f}", r_a), MotionParameters{.kind = MotionKind::kPureYaw,
+                                                          .U = design.U,
+                                                          .psi_a = r_a / design.omega_prime,
+                                                          .omega = omega});
+  }
+  for (double beta : design.yaw_drift_angles) {
+    add(fmt::format("yaw_drift_{:+.1f}deg_r{:.3f}", beta * kRadToDeg, design.yaw_drift_amplitude),
+        MotionParameters{.kind = MotionKind::kYawDrift,
+                         .U = design.U,
+                         .beta = beta,
+                         .psi_a = design.yaw_drift_amplitude / design.omega_prime,
+                         .omega = omega});
+  }
+  for (const CampaignDesign::Circular& arm : design.circular) {
+    add(fmt::format("circular_{:+.1f}deg_r{:.3f}", arm.beta * kRadToDeg, arm.r_prime),
+        MotionParameters{
+            .kind = MotionKind::kCircularMotion, .U = design.U, .beta = arm.beta, .r_prime = arm.r_prime});
+  }
+  return runs;
+}
+
+CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model, const CampaignDesign& design,
+                                 const VirtualCaptiveOptions& options) {
   CaptiveCampaign c;
   c.description = fmt::format("virtual captive tests of {} from the MMG model (U = {} m/s)",
                               model.ship().name, design.U);
   c.ship = CaptiveShipFrom(model.ship());
-  for (double beta : design.drift_angles) {
-    MotionParameters m{.kind = MotionKind::kStaticDrift, .U = design.U, .beta = beta};
-    c.runs.push_back(
-        GenerateRun(model, fmt::format("drift_{:+.1f}deg", beta * kRadToDeg), m, options));
-  }
-  for (double v_a : design.sway_amplitudes) {
-    MotionParameters m{.kind = MotionKind::kPureSway,
-                       .U = design.U,
-                       .y_a = v_a * design.U / omega,
-                       .omega = omega};
-    c.runs.push_back(GenerateRun(model, fmt::format("sway_v{:.3f}", v_a), m, options));
-  }
-  for (double r_a : design.yaw_amplitudes) {
-    MotionParameters m{.kind = MotionKind::kPureYaw,
-                       .U = design.U,
-                       .psi_a = r_a / design.omega_prime,
-                       .omega = omega};
-    c.runs.push_back(GenerateRun(model, fmt::format("yaw_r{:.3f}", r_a), m, options));
-  }
-  for (double beta : design.yaw_drift_angles) {
-    MotionParameters m{.kind = MotionKind::kYawDrift,
-                       .U = design.U,
-                       .beta = beta,
-                       .psi_a = design.yaw_drift_amplitude / design.omega_prime,
-                       .omega = omega};
-    c.runs.push_back(GenerateRun(
-        model,
-        fmt::format("yaw_drift_{:+.1f}deg_r{:.3f}", beta * kRadToDeg, design.yaw_drift_amplitude),
-        m, options));
-  }
-  for (const CampaignDesign::Circular& arm : design.circular) {
-    MotionParameters m{.kind = MotionKind::kCircularMotion,
-                       .U = design.U,
-                       .beta = arm.beta,
-                       .r_prime = arm.r_prime};
-    c.runs.push_back(GenerateRun(
-        model, fmt::format("circular_{:+.1f}deg_r{:.3f}", arm.beta * kRadToDeg, arm.r_prime), m,
-        options));
+  for (const PlannedRun& run : PlanRuns(design, model.ship().principal.Lpp, options)) {
+    c.runs.push_back(GenerateRun(model, run.name, run.motion, options));
   }
   return c;
 }

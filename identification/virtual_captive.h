@@ -61,6 +61,15 @@ struct CampaignDesign {
 // (with `combined`) yaw with drift at 6 and 12 deg.
 CampaignDesign StandardDesign(double U, bool combined);
 
+// The runs of a design for a ship of length Lpp: names (drift_+5.0deg,
+// sway_v0.100, yaw_r0.300, ...) and motions, with t_ramp from `options`
+// (ramp_periods periods for harmonic runs, steady_ramp for steady ones).
+struct PlannedRun {
+  std::string name;
+  MotionParameters motion;
+};
+std::vector<PlannedRun> PlanRuns(const CampaignDesign& design, double Lpp, const VirtualCaptiveOptions& options);
+
 CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model, const CampaignDesign& design,
                                  const VirtualCaptiveOptions& options);
 

@@ -23,7 +23,12 @@ GradType<T> ZeroGrad() {
 
 Gradient::Gradient(const Mesh& mesh, GradientOptions options) : mesh_(mesh), options_(options) {
   options_.Validate();
+  UpdateGeometry();
+}
+
+void Gradient::UpdateGeometry() {
   if (options_.scheme != GradientScheme::kLeastSquares) return;
+  const Mesh& mesh = mesh_;
   const int nc = mesh.n_cells();
   const int ni = mesh.n_internal_faces();
   std::vector<Matrix3> dd(nc, Matrix3::Zero());

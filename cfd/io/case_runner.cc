@@ -7,10 +7,12 @@
 #include <ctime>
 #include <cmath>
 
+#include "cfd/bc/outlet_inlet.h"
 #include "cfd/io/checkpoint.h"
 #include "cfd/io/vtu_writer.h"
 #include "cfd/mesh/box_mesh.h"
 #include "cfd/mesh/poly_mesh_reader.h"
+#include "cfd/motion/ship_forces.h"
 #include "data/report/progress.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
@@ -46,7 +48,7 @@ std::unique_ptr<Mesh> LoadMesh(const ConfigNode& m, const fs::path& case_dir) {
   if (m.Has("box") == m.Has("poly_mesh")) m.Fail("exactly one of 'box' or 'poly_mesh'");
   if (m.Has("box")) {
     const ConfigNode b = m["box"];
-    b.ExpectKeys({"min", "max", "cells", "grading", "empty", "perturbation", "polyhedral", "seed"});
+    b.ExpectKeys({"min", "max", "cells", "grading", "empty", "perturbation", "polyhedral", "seed", "obstacle"});
     BoxMeshOptions o;
     o.min = b.Has("min") ? GetVector(b, "min") : o.min;
     o.max = GetVector(b, "max");
@@ -61,6 +63,17 @@ std::unique_ptr<Mesh> LoadMesh(const ConfigNode& m, const fs::path& case_dir) {
     o.perturbation = b.Get<double>("perturbation", 0.0);
     o.polyhedral = b.Get<bool>("polyhedral", false);
     o.seed = static_cast<unsigned>(b.Get<int>("seed", 1));
+    if (b.Has("obstacle")) {
+      // Blocks removed from the box: {min: [i, j, k], max: [i, j, k]} (cell indices, max exclusive).
+      const ConfigNode ob = b["obstacle"];
+      ob.ExpectKeys({"min", "max"});
+      for (const char* key : {"min", "max"}) {
+        const std::vector<double> v = ob[key].As<std::vector<double>>();
+        if (v.size() != 3) ob[key].Fail("a list of 3 cell indices");
+        for (int d = 0; d < 3; ++d) (key[1] == 'i' ? o.obstacle_min : o.obstacle_max)[d] = static_cast<int>(v[d]);
+      }
+      if (!o.has_obstacle()) ob.Fail("max > min along every axis");
+    }
     if (b.Has("empty")) {
       const std::string axis = b.Get<std::string>("empty");
       const int d = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
@@ -110,8 +123,14 @@ LinearSolverOptions LoadSolver(const ConfigNode& n, LinearSolverOptions o, bool 
   return o;
 }
 
-std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n) {
+std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n, const RigidMeshMotion* motion) {
   const std::string type = n.Get<std::string>("type");
+  if (type == "movingWallVelocity") {
+    // No-slip wall moving with the mesh (the body of the motion section).
+    n.ExpectKeys({"type"});
+    if (!motion) n["type"].Fail("a condition other than movingWallVelocity: it needs a motion: section");
+    return std::make_unique<MovingWall>([motion](double t) { return motion->WallMotion(t); });
+  }
   if (type == "fixedValue") {
     n.ExpectKeys({"type", "value"});
     return std::make_unique<FixedValue<Vector3>>(GetVector(n, "value"));
@@ -140,11 +159,16 @@ std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n) 
     n.ExpectKeys({"type", "inflow"});
     return std::make_unique<InletOutlet<Vector3>>(GetVector(n, "inflow"));
   }
+  if (type == "farField") {
+    n.ExpectKeys({"type", "inflow", "band"});
+    return std::make_unique<FarField<Vector3>>(GetVector(n, "inflow"), true, n.GetPositive("band"));
+  }
   if (type == "empty") {
     n.ExpectKeys({"type"});
     return std::make_unique<Empty<Vector3>>();
   }
-  n["type"].Fail("one of fixedValue, noSlip, movingWall, zeroGradient, slip, inletOutlet, empty");
+  n["type"].Fail(
+      "one of fixedValue, noSlip, movingWall, movingWallVelocity, zeroGradient, slip, inletOutlet, farField, empty");
 }
 
 std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n) {
@@ -157,6 +181,14 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n) {
     n.ExpectKeys({"type"});
     return std::make_unique<ZeroGradient<double>>();
   }
+  if (type == "outletInlet") {
+    n.ExpectKeys({"type", "value"});
+    return std::make_unique<OutletInlet<double>>(n.Get<double>("value", 0.0));
+  }
+  if (type == "farField") {
+    n.ExpectKeys({"type", "value", "band"});
+    return std::make_unique<FarField<double>>(n.Get<double>("value", 0.0), false, n.GetPositive("band"));
+  }
   if (type == "empty") {
     n.ExpectKeys({"type"});
     return std::make_unique<Empty<double>>();
@@ -167,16 +199,22 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n) {
     if (!(f >= 0.0 && f <= 1.0)) n["fraction"].Fail("a value fraction in [0, 1]");
     return std::make_unique<Mixed<double>>(n.Get<double>("value", 0.0), n.Get<double>("gradient", 0.0), f);
   }
-  n["type"].Fail("one of fixedValue, zeroGradient, empty, mixed");
+  n["type"].Fail("one of fixedValue, zeroGradient, outletInlet, farField, empty, mixed");
 }
 
 }  // namespace
 
-Case LoadCase(const ConfigNode& root, const fs::path& case_dir) {
-  root.ExpectKeys({"mesh", "physics", "schemes", "solution", "time", "boundary", "output"});
+Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverrides& overrides) {
+  root.ExpectKeys({"mesh", "physics", "schemes", "solution", "time", "boundary", "output", "motion"});
   Case c;
   c.mesh = LoadMesh(root["mesh"], case_dir);
   const Mesh& mesh = *c.mesh;
+  if (overrides.motion && root.Has("motion")) root["motion"].Fail("no motion: section (the campaign sets it)");
+  if (overrides.motion) {
+    c.motion = std::make_unique<RigidMeshMotion>(*c.mesh, RigidMotion(*overrides.motion));
+  } else if (root.Has("motion")) {
+    c.motion = std::make_unique<RigidMeshMotion>(*c.mesh, RigidMotion(LoadMotionOptions(root["motion"])));
+  }
 
   const ConfigNode ph = root["physics"];
   ph.ExpectKeys({"nu", "rho", "body_force"});
@@ -242,8 +280,11 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir) {
 
   const ConfigNode t = root["time"];
   t.ExpectKeys({"dt", "end"});
-  c.dt = t.GetPositive("dt");
-  c.end_time = t.GetPositive("end");
+  c.dt = overrides.dt > 0.0 ? overrides.dt : t.GetPositive("dt");
+  // A harmonic motion with `periods` sets the end time.
+  const double motion_end = c.motion ? c.motion->motion().options().EndTime() : 0.0;
+  if (motion_end > 0.0 && t.Has("end")) t["end"].Fail("no end time: motion.periods sets it");
+  c.end_time = overrides.end_time > 0.0 ? overrides.end_time : motion_end > 0.0 ? motion_end : t.GetPositive("end");
 
   // Boundary: every patch needs a condition for U and p, and every key must
   // be a patch of the mesh.
@@ -264,14 +305,14 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir) {
     }
     const ConfigNode pn = b[p.name];
     pn.ExpectKeys({"U", "p"});
-    u_bcs.push_back(LoadVelocityBc(pn["U"]));
+    u_bcs.push_back(LoadVelocityBc(pn["U"], c.motion.get()));
     p_bcs.push_back(LoadPressureBc(pn["p"]));
   }
   auto U = std::make_unique<VectorField>("U", mesh, std::move(u_bcs));
   auto p = std::make_unique<ScalarField>("p", mesh, std::move(p_bcs));
 
   const ConfigNode o = root["output"];
-  o.ExpectKeys({"directory", "vtu_interval", "checkpoint_interval", "forces"});
+  o.ExpectKeys({"directory", "vtu_interval", "checkpoint_interval", "forces", "captive"});
   c.output_directory = o.Get<std::string>("directory", "results");
   if (c.output_directory.is_relative()) c.output_directory = case_dir / c.output_directory;
   c.vtu_interval = o.Get<int>("vtu_interval", 0);
@@ -285,11 +326,21 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir) {
       c.force_patches.push_back(name);
     }
   }
+  if (o.Has("captive")) {
+    // Ship-axis loads on the force patches, prime system with these scales.
+    const ConfigNode cap = o["captive"];
+    cap.ExpectKeys({"length", "draft"});
+    if (!c.motion) cap.Fail("a motion: section (ship-axis loads follow the body)");
+    if (c.force_patches.empty()) cap.Fail("output.forces naming the hull patches");
+    c.captive_length = cap.GetPositive("length");
+    c.captive_draft = cap.GetPositive("draft");
+  }
   try {
     c.solver = std::make_unique<PimpleSolver>(mesh, physics, schemes, pimple, std::move(U), std::move(p));
   } catch (const ConfigError& e) {
     root["solution"].Fail(e.what());
   }
+  if (c.motion) c.motion->Attach(*c.solver);
   return c;
 }
 
@@ -327,6 +378,9 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   if (!options.restart.empty()) ReadCheckpoint(options.restart, solver);
 
   std::vector<std::vector<double>> history;  // rows: time, Co, resU, resp, continuity, forces...
+  std::vector<CaptiveSample> captive_rows;      // ship-axis loads (motion with output.captive)
+  std::vector<int> force_patch_index;
+  for (const std::string& name : c.force_patches) force_patch_index.push_back(mesh.FindPatch(name));
   PvdSeries pvd(c.output_directory / "fields.pvd");
   auto write_fields = [&]() {
     VtuCellData u{"U", 3, {}}, p{"p", 1, {}};
@@ -367,6 +421,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       w.WriteArray("forces/" + c.force_patches[k] + "/pressure", fp, {rows, 3}, "N", "pressure force on the patch");
       w.WriteArray("forces/" + c.force_patches[k] + "/viscous", fv, {rows, 3}, "N", "viscous force on the patch");
     }
+    if (!captive_rows.empty()) WriteCaptiveHistory(w, captive_rows);
     w.Commit();
   };
 
@@ -401,6 +456,11 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       for (int d = 0; d < 3; ++d) row.push_back(fv[d]);
     }
     history.push_back(std::move(row));
+    if (c.motion && c.captive_length > 0.0) {
+      captive_rows.push_back(MakeCaptiveSample(solver, *c.motion, force_patch_index, c.rho, nu,
+                                            {c.rho, c.captive_length, c.captive_draft,
+                                             c.motion->motion().options().speed}));
+    }
     const bool last = i + 1 == total_steps;
     if ((last && c.vtu_interval >= 0) || (c.vtu_interval > 0 && solver.step() % c.vtu_interval == 0)) {
       write_fields();

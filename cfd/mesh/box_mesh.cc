@@ -25,6 +25,21 @@ void BoxMeshOptions::Validate() const {
   if (!(perturbation >= 0.0 && perturbation < 0.45)) {
     throw ConfigError(fmt::format("box mesh: perturbation = {}; expected in [0, 0.45)", perturbation));
   }
+  if (has_obstacle()) {
+    for (int d = 0; d < 3; ++d) {
+      if (obstacle_min[d] < 0 || obstacle_max[d] > cells[d]) {
+        throw ConfigError(fmt::format("box mesh: obstacle blocks [{}, {}) along axis {}; expected within [0, {}]",
+                                      obstacle_min[d], obstacle_max[d], d, cells[d]));
+      }
+    }
+  }
+}
+
+bool BoxMeshOptions::has_obstacle() const {
+  for (int d = 0; d < 3; ++d) {
+    if (obstacle_max[d] <= obstacle_min[d]) return false;
+  }
+  return true;
 }
 
 namespace {
@@ -93,8 +108,11 @@ Mesh MakeBoxMesh(const BoxMeshOptions& opt) {
   for (int bk = 0; bk < opt.cells[2]; ++bk) {
     for (int bj = 0; bj < opt.cells[1]; ++bj) {
       for (int bi = 0; bi < opt.cells[0]; ++bi) {
-        const bool refine = opt.polyhedral && (bi + bj + bk) % 2 == 0;
-        const int block_cell = refine ? -1 : n_cells++;
+        const bool removed = opt.has_obstacle() && bi >= opt.obstacle_min[0] && bi < opt.obstacle_max[0] &&
+                             bj >= opt.obstacle_min[1] && bj < opt.obstacle_max[1] &&
+                             bk >= opt.obstacle_min[2] && bk < opt.obstacle_max[2];
+        const bool refine = !removed && opt.polyhedral && (bi + bj + bk) % 2 == 0;
+        const int block_cell = refine || removed ? -1 : n_cells++;
         for (int sk = 0; sk < split[2]; ++sk) {
           for (int sj = 0; sj < split[1]; ++sj) {
             for (int si = 0; si < split[0]; ++si) {
@@ -120,6 +138,8 @@ Mesh MakeBoxMesh(const BoxMeshOptions& opt) {
   static const std::array<const char*, 6> kNames = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
   MeshBuilder builder;
   for (int p = 0; p < 6; ++p) builder.AddPatch(kNames[p], opt.kinds[p]);
+  constexpr int kObstacle = 6;
+  if (opt.has_obstacle()) builder.AddPatch("obstacle", PatchKind::kWall);
   for (int d = 0; d < 3; ++d) {
     std::array<int, 3> ext = n;
     ext[d] += 1;
@@ -133,6 +153,7 @@ Mesh MakeBoxMesh(const BoxMeshOptions& opt) {
             std::array<int, 3> cell_idx = lo;
             if (plane == n[d]) cell_idx[d] -= 1;
             const int c = cell_of[lattice_id(cell_idx[0], cell_idx[1], cell_idx[2])];
+            if (c < 0) continue;  // on the obstacle
             if (plane == 0) std::reverse(pts.begin(), pts.end());
             builder.AddBoundaryFace(2 * d + (plane == 0 ? 0 : 1), c, std::move(pts));
             continue;
@@ -141,7 +162,16 @@ Mesh MakeBoxMesh(const BoxMeshOptions& opt) {
           below[d] -= 1;
           const int a = cell_of[lattice_id(below[0], below[1], below[2])];
           const int b = cell_of[lattice_id(lo[0], lo[1], lo[2])];
-          if (a == b) continue;  // inside a block that is not split
+          if (a == b) continue;  // inside a block that is not split (or inside the obstacle)
+          if (a < 0) {
+            std::reverse(pts.begin(), pts.end());
+            builder.AddBoundaryFace(kObstacle, b, std::move(pts));
+            continue;
+          }
+          if (b < 0) {
+            builder.AddBoundaryFace(kObstacle, a, std::move(pts));
+            continue;
+          }
           builder.AddInternalFace(a, b, std::move(pts));
         }
       }

@@ -2,7 +2,9 @@
 // ymax, zmin, zmax. Optional random perturbation of the interior points
 // (skewed, non-orthogonal hexahedra) and an optional polyhedral variant where
 // every other block is split 2x2x2 (2x2x1 in 2D), so the unsplit blocks become
-// polyhedra with split faces, as snappyHexMesh writes them.
+// polyhedra with split faces, as snappyHexMesh writes them. An optional block
+// obstacle (a range of blocks removed) gives a body in a box: its faces form
+// the wall patch `obstacle`.
 #pragma once
 
 #include <array>
@@ -27,6 +29,11 @@ struct BoxMeshOptions {
   // Patch kinds for xmin, xmax, ymin, ymax, zmin, zmax.
   std::array<PatchKind, 6> kinds = {PatchKind::kWall, PatchKind::kWall, PatchKind::kWall,
                                     PatchKind::kWall, PatchKind::kWall, PatchKind::kWall};
+  // Obstacle: the blocks with index i in [obstacle_min[d], obstacle_max[d])
+  // along every axis d are removed (none when any max <= min).
+  std::array<int, 3> obstacle_min = {0, 0, 0};
+  std::array<int, 3> obstacle_max = {0, 0, 0};
+  bool has_obstacle() const;
   // Throws ConfigError on a bad value.
   void Validate() const;
 };

@@ -278,7 +278,25 @@ int Mesh::Bandwidth() const {
   return bw;
 }
 
+void Mesh::SetPlacement(const Eigen::Matrix3d& rotation, const Vector3& translation) {
+  if (body_.points.empty()) body_ = {points_, cell_centres_, face_centres_, face_areas_, deltas_};
+  rotation_ = rotation;
+  translation_ = translation;
+  auto place = [&](const std::vector<Vector3>& from, std::vector<Vector3>& to) {
+    for (std::size_t i = 0; i < from.size(); ++i) to[i] = rotation * from[i] + translation;
+  };
+  auto turn = [&](const std::vector<Vector3>& from, std::vector<Vector3>& to) {
+    for (std::size_t i = 0; i < from.size(); ++i) to[i] = rotation * from[i];
+  };
+  place(body_.points, points_);
+  place(body_.cell_centres, cell_centres_);
+  place(body_.face_centres, face_centres_);
+  turn(body_.face_areas, face_areas_);
+  turn(body_.deltas, deltas_);
+}
+
 std::pair<int, int> Mesh::RenumberCells() {
+  KELVIN_CHECK(body_.points.empty(), "renumber a mesh before its first placement");
   const int before = Bandwidth();
   const int n = n_cells_;
   std::vector<std::vector<int>> adj(n);

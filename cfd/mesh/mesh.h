@@ -3,7 +3,8 @@
 // Faces are stored once: internal faces first (each has an owner cell and a
 // neighbour cell with owner < neighbour, normal pointing from owner to
 // neighbour), then the boundary faces grouped by patch (owner only, normal
-// pointing out of the domain). Geometry is in body axes and SI units (m).
+// pointing out of the domain). Geometry is in body axes and SI units (m);
+// SetPlacement() moves it rigidly into the earth frame (moving-mesh runs).
 #pragma once
 
 #include <Eigen/Core>
@@ -123,6 +124,17 @@ class Mesh {
   double total_volume() const;
   MeshQuality Quality() const;
 
+  // Rigid placement (docs/lfs-formulation.md section 2): every point, centre,
+  // area vector and delta becomes x_E = rotation * xi + translation of the
+  // body-fixed geometry given at construction (kept aside on the first call),
+  // so repeated placements never accumulate round-off. Volumes, areas and
+  // weights do not change. Identity restores the body-fixed geometry.
+  // Geometry cached elsewhere (gradient and non-orthogonal vectors) must be
+  // refreshed by its owner (PimpleSolver::RefreshGeometry).
+  void SetPlacement(const Eigen::Matrix3d& rotation, const Vector3& translation);
+  const Eigen::Matrix3d& placement_rotation() const { return rotation_; }
+  const Vector3& placement_translation() const { return translation_; }
+
   // Renumbers the cells by reverse Cuthill-McKee to shrink the matrix
   // bandwidth (better cache use). Faces are re-sorted to keep the upper
   // triangular order; geometry is recomputed. Returns the bandwidth before
@@ -155,6 +167,14 @@ class Mesh {
   std::vector<Vector3> deltas_;
   std::vector<int> cell_face_offsets_;
   std::vector<int> cell_faces_;
+
+  // Body-fixed copies of the vector geometry (empty until the first placement).
+  struct BodyGeometry {
+    std::vector<Vector3> points, cell_centres, face_centres, face_areas, deltas;
+  };
+  BodyGeometry body_;
+  Eigen::Matrix3d rotation_ = Eigen::Matrix3d::Identity();
+  Vector3 translation_ = Vector3::Zero();
 };
 
 std::string PatchKindName(PatchKind kind);

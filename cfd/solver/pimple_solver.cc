@@ -76,6 +76,39 @@ void PimpleSolver::SetTurbulence(std::unique_ptr<TurbulenceModel> model) {
   if (initialized_ && turbulence_) turbulence_->Initialize(*U_, RelativeFlux());
 }
 
+void PimpleSolver::RefreshGeometry() {
+  grad_.UpdateGeometry();
+  if (turbulence_) turbulence_->RefreshGeometry();
+  non_orth_ = NonOrthGeometry(mesh_);
+  non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;
+  if (schemes_.skew_correction) skew_ = mesh_.SkewVectors();
+}
+
+void PimpleSolver::MoveMesh(bool carry_old_fluxes) {
+  if (!mesh_motion_) return;
+  const auto sf = mesh_.face_areas();
+  std::vector<Vector3> sf_before;
+  if (carry_old_fluxes) sf_before.assign(sf.begin(), sf.end());
+  mesh_motion_(time_, mesh_flux_);
+  KELVIN_CHECK(static_cast<int>(mesh_flux_.size()) == mesh_.n_faces(), "mesh flux on every face");
+  RefreshGeometry();
+  if (!carry_old_fluxes) return;
+  // The old fluxes crossed the faces in their old orientation. The transient
+  // Rhie-Chow term needs phi_old - U_old_f . S_f with the present S_f, so the
+  // old fluxes follow the face rotation with the interpolated old velocity
+  // (zero change for pure translation).
+  const auto w = mesh_.weights();
+  const std::size_t levels = std::min(static_cast<std::size_t>(U_->n_old()), phi_old_.size());
+  for (std::size_t l = 0; l < levels; ++l) {
+    const std::vector<Vector3>& u_old = U_->old(static_cast<int>(l));
+    for (int f = 0; f < mesh_.n_internal_faces(); ++f) {
+      const Vector3 dS = sf[f] - sf_before[f];
+      const int P = mesh_.owner()[f], N = mesh_.neighbour()[f];
+      phi_old_[l][f] += (w[f] * u_old[P] + (1.0 - w[f]) * u_old[N]).dot(dS);
+    }
+  }
+}
+
 std::span<const double> PimpleSolver::RelativeFlux() {
   flux_rel_.resize(phi_.size());
   for (std::size_t f = 0; f < phi_.size(); ++f) flux_rel_[f] = phi_[f] - mesh_flux_[f];
@@ -83,6 +116,7 @@ std::span<const double> PimpleSolver::RelativeFlux() {
 }
 
 void PimpleSolver::Initialize() {
+  MoveMesh(false);
   // Flux from the initial velocity (boundary values from the conditions).
   U_->CorrectBoundary(time_, {});
   const int ni = mesh_.n_internal_faces();
@@ -355,6 +389,7 @@ StepSummary PimpleSolver::Step(double dt) {
   last_dt_ = dt;
   summary.step = step_;
   summary.time = time_;
+  MoveMesh(true);
   // Fresh AMG hierarchy each time step (and when the iterations grow).
   if (pimple_.pressure_solver.amg.rebuild_each_step) pressure_solver_->RequestSetup();
 
@@ -451,6 +486,7 @@ void PimpleSolver::SetState(const State& s) {
   for (int p = 0; p < U_->n_patches(); ++p) U_->bc(p).SetState(s.bc_state.at(p));
   for (int p = 0; p < p_->n_patches(); ++p) p_->bc(p).SetState(s.bc_state.at(U_->n_patches() + p));
   initialized_ = true;
+  MoveMesh(false);
   U_->CorrectBoundary(time_, RelativeFlux());
   p_->CorrectBoundary(time_, RelativeFlux());
   if (turbulence_) {

@@ -110,6 +110,17 @@ class PimpleSolver {
   double FaceViscosity(int f) const { return turbulence_ ? turbulence_->nu_eff_faces()[f] : physics_.nu; }
   // The model's summary of the last step (zeros when laminar).
   const TurbulenceSummary& turbulence_summary() const { return turbulence_summary_; }
+  // Moving-mesh stage ("moveMesh", before the momentum predictor): each step
+  // calls motion(t_new, mesh_flux), which places the mesh at time t_new and
+  // fills the mesh flux F_mesh (cfd/motion/mesh_motion.h). The solver then
+  // refreshes its cached geometry and carries the old fluxes of the
+  // Rhie-Chow transient term to the new face orientation. Also called at
+  // the start and on SetState, so a restart sees the same placement.
+  using MeshMotion = std::function<void(double t, std::vector<double>& mesh_flux)>;
+  void SetMeshMotion(MeshMotion motion) { mesh_motion_ = std::move(motion); }
+  // Recomputes the geometry the solver caches (least-squares gradient
+  // vectors, non-orthogonal and skewness corrections) after the mesh moved.
+  void RefreshGeometry();
   const PimpleOptions& options() const { return pimple_; }
 
   // Full state for checkpoints: continuing from a restored state gives the
@@ -131,6 +142,8 @@ class PimpleSolver {
 
  private:
   void Initialize();
+  // Runs the moving-mesh stage at time_ (no-op without a motion).
+  void MoveMesh(bool carry_old_fluxes);
   void AssembleMomentum(double dt, std::span<const double> flux_rel);
   double SolveMomentum(const std::vector<Vector3>& grad_p, StepSummary& summary);
   void PressureCorrector(double dt, bool final_corrector, double alpha_U, double alpha_p,
@@ -149,6 +162,7 @@ class PimpleSolver {
   std::vector<double> phi_;
   std::vector<std::vector<double>> phi_old_;
   std::vector<double> mesh_flux_;
+  MeshMotion mesh_motion_;
   std::vector<double> flux_rel_;
   bool non_orth_correction_ = true;
   double time_ = 0.0;

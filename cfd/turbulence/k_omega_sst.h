@@ -90,6 +90,10 @@ class KOmegaSst : public TurbulenceModel {
   std::string name() const override { return "kOmegaSST"; }
   void Initialize(const VectorField& U, std::span<const double> flux) override;
   TurbulenceSummary Correct(const TurbulenceInputs& in) override;
+  void RefreshGeometry() override {
+    grad_.UpdateGeometry();
+    geo_ = NonOrthGeometry(mesh_);
+  }
   const std::vector<double>& nu_eff_faces() const override { return nu_eff_faces_; }
   const std::vector<double>& nu_t() const override { return nut_; }
   const std::vector<Vector3>& wall_shear_stress() const override { return tau_w_; }

@@ -56,6 +56,9 @@ class TurbulenceModel {
   // Computes nu_t and the wall quantities from the initial fields.
   virtual void Initialize(const VectorField& U, std::span<const double> flux) = 0;
   virtual TurbulenceSummary Correct(const TurbulenceInputs& in) = 0;
+  // The mesh moved rigidly: recompute cached geometry (gradient vectors,
+  // non-orthogonal corrections). Wall distances do not change.
+  virtual void RefreshGeometry() = 0;
   // nu + nu_t on every face (m^2/s).
   virtual const std::vector<double>& nu_eff_faces() const = 0;
   // Turbulent viscosity per cell (m^2/s).

@@ -1,11 +1,17 @@
 // kelvin captive: runs a captive test campaign (static drift, pure sway, pure
-// yaw, yaw with drift) and writes the force histories in the captive HDF5
-// schema that `kelvin identify` reads.
+// yaw, yaw with drift, circular motion) and writes the force histories in the
+// captive HDF5 schema that `kelvin identify` reads. Solver mmg: virtual tests
+// from the ship's MMG model; solver cfd: resumable CFD runs (cfd/campaign).
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <string>
 
+#include "cfd/campaign/cfd_campaign.h"
+#include "data/schema/errors.h"
 #include "identification/campaign_file.h"
 #include "identification/captive_io.h"
 #include "tools/kelvin/commands.h"
@@ -17,17 +23,58 @@ namespace {
 struct CaptiveArgs {
   std::string campaign_file;
   std::string output;
+  int jobs = 0;
+  long stop_after_steps = 0;
+  std::string run;
+  bool no_progress = false;
 };
+
+std::filesystem::path SelfExecutable() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path() : self;
+}
+
+void RunCfd(const ident::CampaignFile& file, const CaptiveArgs& a) {
+  cfd::CampaignRunOptions o;
+  o.jobs = a.jobs;
+  o.stop_after_steps = a.stop_after_steps;
+  o.only_run = a.run;
+  o.executable = SelfExecutable();
+  o.output = a.output;
+  o.progress = !a.no_progress;
+  const cfd::CampaignRunSummary s = cfd::RunCfdCampaign(file, o);
+  if (!a.run.empty()) {
+    fmt::print("run '{}': {} ({} steps computed)\n", a.run, s.runs_done == 1 ? "done" : "stopped",
+               s.steps_computed);
+    return;
+  }
+  if (!s.complete) {
+    fmt::print("campaign '{}' stopped after {} steps; run the same command again to resume\n",
+               file.name, s.steps_computed);
+    std::exit(4);
+  }
+  fmt::print("campaign '{}' ({} runs, solver cfd, {} steps computed now)\n  written: {}\n",
+             file.name, s.runs_total, s.steps_computed, s.output.string());
+}
 
 void RunCaptive(const CaptiveArgs& a) {
   const ident::CampaignFile file = ident::LoadCampaignFile(a.campaign_file);
+  if (file.solver == ident::CampaignFile::Solver::kCfd) {
+    RunCfd(file, a);
+    return;
+  }
+  if (a.jobs > 0 || a.stop_after_steps > 0 || !a.run.empty()) {
+    throw ArgumentError("--jobs, --stop-after-steps and --run are for campaigns with solver: cfd");
+  }
   const ident::CaptiveCampaign campaign = ident::RunCampaign(file);
   const std::string out = a.output.empty() ? "results/" + file.name + ".h5" : a.output;
   ident::WriteCampaignH5(campaign, out);
-  fmt::print("campaign '{}' ({} runs, solver mmg: virtual captive tests of {})\n", file.name, campaign.runs.size(),
-             file.ship_file.string());
+  fmt::print("campaign '{}' ({} runs, solver mmg: virtual captive tests of {})\n", file.name,
+             campaign.runs.size(), file.ship_file.string());
   for (const auto& run : campaign.runs) {
-    fmt::print("  {:<24} {:<16} {} samples\n", run.name, ident::MotionKindName(run.motion.kind), run.time.size());
+    fmt::print("  {:<24} {:<16} {} samples\n", run.name, ident::MotionKindName(run.motion.kind),
+               run.time.size());
   }
   fmt::print("  written: {}\n", out);
 }
@@ -36,11 +83,21 @@ void RunCaptive(const CaptiveArgs& a) {
 
 Command AddCaptiveCommand(CLI::App& app) {
   auto args = std::make_shared<CaptiveArgs>();
-  CLI::App* cmd = app.add_subcommand("captive", "Run a captive test campaign and write its force histories");
+  CLI::App* cmd =
+      app.add_subcommand("captive", "Run a captive test campaign and write its force histories");
   cmd->add_option("campaign", args->campaign_file, "Campaign file (data/cases/<campaign>.yaml)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", args->output, "Campaign HDF5 (default results/<name>.h5)");
+  cmd->add_option("-o,--output", args->output,
+                  "Campaign HDF5 (default results/<name>.h5; cfd: <cfd.directory>/<name>.h5)");
+  cmd->add_option("-j,--jobs", args->jobs,
+                  "cfd: runs at the same time (default: cfd.jobs of the file)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--stop-after-steps", args->stop_after_steps,
+                  "cfd: stop as if killed after this many time steps (resume by running again)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--run", args->run, "cfd: run only this run (what --jobs starts for each run)");
+  cmd->add_flag("--no-progress", args->no_progress, "cfd: no progress table");
   return {cmd, [args] { RunCaptive(*args); }};
 }
 

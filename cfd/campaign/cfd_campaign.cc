@@ -1,0 +1,546 @@
+#include "cfd/campaign/cfd_campaign.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <optional>
+#include <thread>
+
+#include "cfd/io/case_runner.h"
+#include "cfd/io/checkpoint.h"
+#include "cfd/motion/ship_forces.h"
+#include "data/report/progress.h"
+#include "data/schema/atomic_file.h"
+#include "data/schema/config.h"
+#include "data/schema/errors.h"
+#include "data/schema/h5_file.h"
+#include "identification/captive_io.h"
+#include "identification/virtual_captive.h"
+
+extern char** environ;
+
+namespace kelvin::cfd {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// The extra channels beside X, Y, N in the samples and in the campaign file.
+constexpr std::array<std::string_view, 9> kExtraChannels = {
+    "X_pressure", "Y_pressure", "N_pressure", "X_viscous", "Y_viscous",
+    "N_viscous",  "X_prime",    "Y_prime",    "N_prime"};
+
+struct Job {
+  enum class State { kLeft, kRunning, kDone, kFailed };
+  std::string name;
+  ident::MotionParameters motion;  // as the captive schema records it
+  MotionOptions cfd_motion;
+  double dt = 0.0;
+  int steps = 0;
+  fs::path dir;
+  State state = State::kLeft;
+  int step = 0;
+  std::string message;
+  pid_t pid = -1;
+};
+
+PrescribedMotion ToPrescribed(ident::MotionKind kind) {
+  switch (kind) {
+    case ident::MotionKind::kStaticDrift:
+      return PrescribedMotion::kStaticDrift;
+    case ident::MotionKind::kPureSway:
+      return PrescribedMotion::kPureSway;
+    case ident::MotionKind::kPureYaw:
+      return PrescribedMotion::kPureYaw;
+    case ident::MotionKind::kYawDrift:
+      return PrescribedMotion::kYawDrift;
+    case ident::MotionKind::kCircularMotion:
+      return PrescribedMotion::kCircularMotion;
+  }
+  return PrescribedMotion::kStaticDrift;
+}
+
+std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip& ship,
+                          double case_dt) {
+  ident::CampaignDesign design = f.design;
+  design.U = f.speed;
+  std::vector<Job> jobs;
+  for (const ident::PlannedRun& run : ident::PlanRuns(design, ship.Lpp, f.sampling)) {
+    Job job;
+    job.name = run.name;
+    job.motion = run.motion;
+    const ident::MotionParameters& m = run.motion;
+    MotionOptions& o = job.cfd_motion;
+    o.kind = ToPrescribed(m.kind);
+    o.speed = m.U;
+    o.drift_angle = m.beta;
+    o.sway_amplitude = m.y_a;
+    o.yaw_amplitude = m.psi_a;
+    o.period = ident::IsHarmonic(m.kind) ? m.Period() : 0.0;
+    o.yaw_rate = m.r_prime * m.U / ship.Lpp;
+    o.ramp_time = m.t_ramp;
+    o.centre = Vector3(f.cfd.centre[0], f.cfd.centre[1], f.cfd.centre[2]);
+    if (ident::IsHarmonic(m.kind)) {
+      job.dt = o.period / f.cfd.steps_per_period;
+      job.steps = (f.sampling.ramp_periods + f.sampling.periods) * f.cfd.steps_per_period;
+    } else {
+      job.dt = case_dt;
+      job.steps =
+          static_cast<int>(std::llround((f.cfd.steady_ramp + f.cfd.steady_duration) / case_dt));
+    }
+    job.dir = f.cfd.directory / run.name;
+    jobs.push_back(std::move(job));
+  }
+  return jobs;
+}
+
+// --- samples files -----------------------------------------------------------
+
+void WriteSamples(const fs::path& path, const std::vector<CaptiveSample>& samples, int step,
+                  int steps) {
+  data::H5Writer w(path);
+  w.SetAttribute("/", "kind", "kelvin captive CFD run samples");
+  w.SetAttribute("/", "step", static_cast<double>(step));
+  w.SetAttribute("/", "steps", static_cast<double>(steps));
+  WriteCaptiveHistory(w, samples);
+  w.Commit();
+}
+
+std::vector<CaptiveSample> ReadSamples(const fs::path& path, const RigidMotion& motion) {
+  const data::H5Reader r(path);
+  auto col = [&](std::string_view name) { return r.Read("captive/" + std::string(name)).values; };
+  const std::vector<double> t = col("time");
+  const std::vector<double> xp = col("X_pressure"), yp = col("Y_pressure"), np = col("N_pressure");
+  const std::vector<double> xv = col("X_viscous"), yv = col("Y_viscous"), nv = col("N_viscous");
+  const std::vector<double> x1 = col("X_prime"), y1 = col("Y_prime"), n1 = col("N_prime");
+  std::vector<CaptiveSample> out(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    out[i].time = t[i];
+    out[i].pose = motion.At(t[i]);
+    out[i].loads.pressure = {xp[i], yp[i], np[i]};
+    out[i].loads.viscous = {xv[i], yv[i], nv[i]};
+    out[i].prime = {x1[i], y1[i], n1[i]};
+  }
+  return out;
+}
+
+double Extra(const CaptiveSample& s, std::size_t k) {
+  switch (k) {
+    case 0:
+      return s.loads.pressure.X;
+    case 1:
+      return s.loads.pressure.Y;
+    case 2:
+      return s.loads.pressure.N;
+    case 3:
+      return s.loads.viscous.X;
+    case 4:
+      return s.loads.viscous.Y;
+    case 5:
+      return s.loads.viscous.N;
+    case 6:
+      return s.prime.X;
+    case 7:
+      return s.prime.Y;
+    default:
+      return s.prime.N;
+  }
+}
+
+void WriteProgressFile(const Job& job, double seconds) {
+  data::WriteFileAtomically(job.dir / "progress.txt",
+                            fmt::format("{} {} {:.3f}\n", job.step, job.steps, seconds));
+}
+
+// --- the progress table ------------------------------------------------------
+
+std::string StateName(Job::State s) {
+  switch (s) {
+    case Job::State::kLeft:
+      return "left";
+    case Job::State::kRunning:
+      return "running";
+    case Job::State::kDone:
+      return "done";
+    case Job::State::kFailed:
+      return "failed";
+  }
+  return "";
+}
+
+std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
+  std::string out =
+      fmt::format("  {:<30} {:<16} {:<8} {:>13}\n", "run", "motion", "status", "steps");
+  int done = 0, running = 0, left = 0;
+  long remaining = 0;
+  for (const Job& j : jobs) {
+    out += fmt::format("  {:<30} {:<16} {:<8} {:>6}/{:<6}\n", j.name,
+                       ident::MotionKindName(j.motion.kind), StateName(j.state), j.step, j.steps);
+    done += j.state == Job::State::kDone;
+    running += j.state == Job::State::kRunning;
+    left += j.state == Job::State::kLeft;
+    if (j.state != Job::State::kDone) remaining += j.steps - j.step;
+  }
+  const std::string eta =
+      computed > 0 && elapsed > 0
+          ? FormatDuration(static_cast<double>(remaining) * elapsed / static_cast<double>(computed))
+          : std::string("unknown");
+  out += fmt::format("  {} done, {} running, {} left; {} steps to go, ETA {} (elapsed {})\n", done,
+                     running, left, remaining, eta, FormatDuration(elapsed));
+  return out;
+}
+
+// --- one run in this process -------------------------------------------------
+
+struct Context {
+  const ident::CampaignFile& file;
+  const data::ConfigNode& case_root;
+  const ident::CaptiveShip& ship;
+  long budget = 0;    // > 0: steps allowed in this call
+  long computed = 0;  // steps computed in this call
+  std::function<void()> report;
+};
+
+std::vector<int> HullPatches(const Context& ctx, const Case& c) {
+  std::vector<std::string> names =
+      ctx.file.cfd.hull_patches.empty() ? c.force_patches : ctx.file.cfd.hull_patches;
+  if (names.empty()) {
+    throw ConfigError(fmt::format(
+        "{}: cfd.hull_patches is empty and the case {} has no output.forces; expected the "
+        "hull patch names",
+        ctx.file.path.string(), ctx.file.cfd.case_file.string()));
+  }
+  std::vector<int> out;
+  for (const std::string& n : names) {
+    const int p = c.mesh->FindPatch(n);
+    if (p < 0) {
+      std::vector<std::string> all;
+      for (const Patch& patch : c.mesh->patches()) all.push_back(patch.name);
+      throw ConfigError(
+          fmt::format("{}: cfd.hull_patches: '{}' is not a patch of the case mesh ({})",
+                      ctx.file.path.string(), n, fmt::join(all, ", ")));
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+// An exclusive lock on a run directory, so that two processes (a rerun while
+// orphaned workers of a killed parent still run) never work on one run.
+class RunLock {
+ public:
+  explicit RunLock(const Job& job) {
+    const fs::path path = job.dir / "lock";
+    fd_ = ::open(path.c_str(), O_CREAT | O_RDWR, 0644);
+    if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      if (fd_ >= 0) ::close(fd_);
+      throw InputError(fmt::format(
+          "run '{}' is being computed by another process (lock {}); wait for it or stop it",
+          job.name, path.string()));
+    }
+  }
+  ~RunLock() { ::close(fd_); }
+  RunLock(const RunLock&) = delete;
+  RunLock& operator=(const RunLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+// Runs (or resumes) one job; false when the step budget ran out first.
+bool ExecuteJob(Context& ctx, Job& job) {
+  const fs::path case_dir = ctx.file.cfd.case_file.parent_path();
+  CaseOverrides overrides;
+  overrides.motion = job.cfd_motion;
+  overrides.dt = job.dt;
+  overrides.end_time = job.dt * job.steps;
+  fs::create_directories(job.dir);
+  const RunLock lock(job);
+  const fs::path checkpoint = job.dir / "checkpoint.h5", samples_file = job.dir / "samples.h5";
+  std::optional<Case> c(LoadCase(ctx.case_root, case_dir, overrides));
+  const std::vector<int> hull = HullPatches(ctx, *c);
+  const double nu = ctx.case_root["physics"].GetPositive("nu");
+  const PrimeScales scales{c->rho, ctx.ship.Lpp,
+                           ctx.file.cfd.draft > 0 ? ctx.file.cfd.draft : ctx.ship.d,
+                           job.cfd_motion.speed};
+  std::vector<CaptiveSample> samples;
+  if (fs::exists(checkpoint) && fs::exists(samples_file)) {
+    ReadCheckpoint(checkpoint, *c->solver);
+    samples = ReadSamples(samples_file, c->motion->motion());
+    const auto step = static_cast<std::size_t>(c->solver->step());
+    if (samples.size() >= step) {
+      samples.resize(step);  // the samples may run ahead of a checkpoint that was not written
+    } else {
+      samples.clear();  // inconsistent pair: start the run again
+      c.reset();
+      c.emplace(LoadCase(ctx.case_root, case_dir, overrides));
+    }
+  }
+  PimpleSolver& solver = *c->solver;
+  job.step = solver.step();
+  const auto start = Clock::now();
+  auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  while (solver.step() < job.steps) {
+    if (ctx.budget > 0 && ctx.computed >= ctx.budget) return false;  // as if killed here
+    const StepSummary s = solver.Step(job.dt);
+    ++ctx.computed;
+    if (!s.finite) {
+      throw InputError(
+          fmt::format("run '{}' diverged at step {} (t = {:.6g} s, Courant {:.3g}); last good "
+                      "checkpoint: {}",
+                      job.name, s.step, s.time, s.courant_max,
+                      fs::exists(checkpoint) ? checkpoint.string() : "none"));
+    }
+    samples.push_back(MakeCaptiveSample(solver, *c->motion, hull, c->rho, nu, scales));
+    job.step = solver.step();
+    if (job.step % ctx.file.cfd.checkpoint_interval == 0 && job.step < job.steps) {
+      WriteSamples(samples_file, samples, job.step, job.steps);  // samples first, then the state
+      WriteCheckpoint(checkpoint, solver);
+      WriteProgressFile(job, seconds());
+    }
+    if (ctx.report) ctx.report();
+  }
+  WriteSamples(job.dir / "result.h5", samples, job.step, job.steps);
+  WriteProgressFile(job, seconds());
+  std::error_code ec;
+  fs::remove(checkpoint, ec);
+  fs::remove(samples_file, ec);
+  return true;
+}
+
+// --- several runs as worker processes ---------------------------------------
+
+void ReadProgressFile(Job& job) {
+  std::ifstream in(job.dir / "progress.txt");
+  int step = 0, steps = 0;
+  if (in >> step >> steps) job.step = step;
+}
+
+pid_t SpawnWorker(const ident::CampaignFile& f, const fs::path& exe, Job& job) {
+  fs::create_directories(job.dir);
+  const std::string log = (job.dir / "log.txt").string();
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::vector<std::string> args = {exe.string(), "--quiet", "captive",      f.path.string(),
+                                   "--run",      job.name,  "--no-progress"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0)
+    throw InputError(
+        fmt::format("cannot start {} for run '{}' (error {})", exe.string(), job.name, rc));
+  return pid;
+}
+
+std::string LastLine(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
+}  // namespace
+
+CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRunOptions& options) {
+  if (f.solver != ident::CampaignFile::Solver::kCfd) {
+    throw ConfigError(f.path.string() + ": campaign.solver is not 'cfd'");
+  }
+  const ident::CaptiveShip ship = ident::LoadCaptiveShip(f.ship_file);
+  if (!(f.speed > 0))
+    throw ConfigError(f.path.string() + ": campaign.speed: expected the carriage speed in m/s");
+  const data::ConfigNode case_root = data::ConfigNode::LoadFile(f.cfd.case_file);
+  const double case_rho =
+      case_root["physics"].Has("rho") ? case_root["physics"].GetPositive("rho") : 1000.0;
+  if (std::abs(case_rho - ship.rho) > 1e-9 * ship.rho) {
+    throw ConfigError(
+        fmt::format("{}: physics.rho = {} differs from the ship's rho = {} ({}); the prime system "
+                    "needs one density",
+                    f.cfd.case_file.string(), case_rho, ship.rho, f.ship_file.string()));
+  }
+  std::vector<Job> jobs = PlanJobs(f, ship, case_root["time"].GetPositive("dt"));
+  const int n_jobs = options.jobs > 0 ? options.jobs : f.cfd.jobs;
+  if (n_jobs > 1 && options.stop_after_steps > 0) {
+    throw ArgumentError(
+        "--stop-after-steps runs the campaign in one process; use it with --jobs 1");
+  }
+  CampaignRunSummary summary;
+  summary.output = options.output.empty() ? f.cfd.directory / (f.name + ".h5") : options.output;
+  summary.runs_total = static_cast<int>(jobs.size());
+  for (Job& j : jobs) {
+    if (fs::exists(j.dir / "result.h5")) {
+      j.state = Job::State::kDone;
+      j.step = j.steps;
+    } else {
+      ReadProgressFile(j);
+    }
+  }
+  const auto start = Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  auto last_print = Clock::now() - std::chrono::hours(1);
+  auto print = [&](bool force) {
+    summary.table = Table(jobs, elapsed(), summary.steps_computed);
+    if (!options.progress) return;
+    if (!force && Clock::now() - last_print < std::chrono::seconds(10)) return;
+    last_print = Clock::now();
+    std::fprintf(options.stream, "captive campaign '%s' (cfd):\n%s", f.name.c_str(),
+                 summary.table.c_str());
+    std::fflush(options.stream);
+  };
+
+  Context ctx{f, case_root, ship, options.stop_after_steps, 0, {}};
+  if (!options.only_run.empty()) {
+    auto it = std::find_if(jobs.begin(), jobs.end(),
+                           [&](const Job& j) { return j.name == options.only_run; });
+    if (it == jobs.end()) {
+      std::vector<std::string> names;
+      for (const Job& j : jobs) names.push_back(j.name);
+      throw ArgumentError(fmt::format("--run {}: no such run in {} (runs: {})", options.only_run,
+                                      f.path.string(), fmt::join(names, ", ")));
+    }
+    if (it->state != Job::State::kDone) {
+      it->state = Job::State::kRunning;
+      if (ExecuteJob(ctx, *it)) it->state = Job::State::kDone;
+    }
+    summary.steps_computed = ctx.computed;
+    summary.runs_done = it->state == Job::State::kDone ? 1 : 0;
+    summary.complete = false;
+    return summary;
+  }
+
+  if (n_jobs <= 1) {
+    ctx.report = [&] {
+      summary.steps_computed = ctx.computed;
+      print(false);
+    };
+    print(true);
+    for (Job& j : jobs) {
+      if (j.state == Job::State::kDone) continue;
+      j.state = Job::State::kRunning;
+      const bool finished = ExecuteJob(ctx, j);
+      summary.steps_computed = ctx.computed;
+      if (!finished) {
+        j.state = Job::State::kLeft;
+        print(true);
+        return summary;  // stopped by the step budget: resume later
+      }
+      j.state = Job::State::kDone;
+      print(true);
+    }
+  } else {
+    if (options.executable.empty())
+      throw ArgumentError("--jobs > 1 needs the path of the kelvin program");
+    print(true);
+    int running = 0;
+    for (;;) {
+      for (Job& j : jobs) {
+        if (running >= n_jobs) break;
+        if (j.state != Job::State::kLeft) continue;
+        j.pid = SpawnWorker(f, options.executable, j);
+        j.state = Job::State::kRunning;
+        ++running;
+      }
+      if (running == 0) break;
+      int status = 0;
+      const pid_t pid = waitpid(-1, &status, WNOHANG);
+      if (pid > 0) {
+        for (Job& j : jobs) {
+          if (j.pid != pid) continue;
+          j.pid = -1;
+          --running;
+          const int before = j.step;
+          ReadProgressFile(j);
+          summary.steps_computed += j.step - before;
+          if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(j.dir / "result.h5")) {
+            j.state = Job::State::kDone;
+            j.step = j.steps;
+          } else {
+            j.state = Job::State::kFailed;
+            j.message = LastLine(j.dir / "log.txt");
+          }
+        }
+        print(true);
+        continue;
+      }
+      for (Job& j : jobs) {
+        if (j.state != Job::State::kRunning) continue;
+        const int before = j.step;
+        ReadProgressFile(j);
+        summary.steps_computed += j.step - before;
+      }
+      print(false);
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    std::string failures;
+    for (const Job& j : jobs) {
+      if (j.state == Job::State::kFailed)
+        failures += fmt::format("\n  run '{}': {}", j.name, j.message);
+    }
+    if (!failures.empty())
+      throw InputError("captive campaign '" + f.name + "': runs failed:" + failures);
+  }
+
+  // Every run is done: the campaign file in the captive schema.
+  ident::CaptiveCampaign campaign;
+  campaign.description = fmt::format(
+      "CFD captive campaign '{}' of {}: case {}, double body (no free surface), hull loads on the "
+      "moving mesh",
+      f.name, ship.name, f.cfd.case_file.filename().string());
+  campaign.ship = ship;
+  std::vector<std::vector<CaptiveSample>> all;
+  for (const Job& j : jobs) {
+    all.push_back(ReadSamples(j.dir / "result.h5", RigidMotion(j.cfd_motion)));
+    ident::CaptiveRun run;
+    run.name = j.name;
+    run.motion = j.motion;
+    run.includes_rigid_body_inertia = false;
+    for (const CaptiveSample& s : all.back()) {
+      const PlanarLoad total = s.loads.Total();
+      run.time.push_back(s.time);
+      run.force[0].push_back(total.X);
+      run.force[1].push_back(total.Y);
+      run.force[2].push_back(total.N);
+    }
+    campaign.runs.push_back(std::move(run));
+  }
+  ident::WriteCampaignH5(campaign, summary.output);
+  data::H5Writer w(summary.output, data::H5Writer::Mode::kAppend);
+  w.SetAttribute("/", "solver", "cfd");
+  w.SetAttribute("/", "case", f.cfd.case_file.string());
+  w.SetAttribute("/", "prime_draft", f.cfd.draft > 0 ? f.cfd.draft : ship.d);
+  for (std::size_t r = 0; r < jobs.size(); ++r) {
+    for (std::size_t k = 0; k < kExtraChannels.size(); ++k) {
+      std::vector<double> v;
+      for (const CaptiveSample& s : all[r]) v.push_back(Extra(s, k));
+      const bool prime = k >= 6;
+      w.WriteArray(
+          fmt::format("runs/{}/{}", jobs[r].name, kExtraChannels[k]), v, {v.size()},
+          prime ? "1" : (k % 3 == 2 ? "N m" : "N"),
+          prime ? "prime system: forces / (0.5 rho Lpp T U^2), moment / (0.5 rho Lpp^2 T U^2)"
+                : (k < 3 ? "pressure part" : "viscous part"));
+    }
+  }
+  w.Commit();
+  summary.runs_done = summary.runs_total;
+  summary.complete = true;
+  summary.table = Table(jobs, elapsed(), summary.steps_computed);
+  return summary;
+}
+
+}  // namespace kelvin::cfd

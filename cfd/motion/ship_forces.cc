@@ -1,0 +1,115 @@
+#include "cfd/motion/ship_forces.h"
+
+namespace kelvin::cfd {
+
+HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, double rho,
+                           double nu, const Pose& pose, const Vector3& centre_body) {
+  const Mesh& mesh = s.mesh();
+  const int ni = mesh.n_internal_faces();
+  const Eigen::Matrix3d R = pose.Rotation();
+  const Vector3 centre = R * centre_body + pose.Translation(centre_body);
+  Vector3 fp = Vector3::Zero(), fv = Vector3::Zero(), mp = Vector3::Zero(), mv = Vector3::Zero();
+  for (int patch_index : patches) {
+    const Patch& patch = mesh.patches()[patch_index];
+    const auto& bc = s.U().bc(patch_index);
+    for (int i = 0; i < patch.size; ++i) {
+      const int f = patch.start + i;
+      // S_f points out of the water, into the body: the pressure pushes along
+      // it; the wall shear stress on the body is -mu dU/dn_out.
+      const Vector3 dp = rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
+      const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) +
+                              bc.gradient_boundary()[i];
+      const Vector3 dv = -rho * nu * sn_grad * mesh.face_area_magnitudes()[f];
+      const Vector3 arm = mesh.face_centres()[f] - centre;
+      fp += dp;
+      fv += dv;
+      mp += arm.cross(dp);
+      mv += arm.cross(dv);
+    }
+  }
+  // Earth (z up) -> grid axes (x forward, y port, z up) -> ship axes
+  // (x forward, y starboard, z down).
+  auto to_ship = [&](const Vector3& f_earth, const Vector3& m_earth) {
+    const Vector3 f = R.transpose() * f_earth;
+    const Vector3 m = R.transpose() * m_earth;
+    return PlanarLoad{f.x(), -f.y(), -m.z()};
+  };
+  return {to_ship(fp, mp), to_ship(fv, mv)};
+}
+
+PlanarLoad PrimeScales::ToPrime(const PlanarLoad& load) const {
+  const double force = 0.5 * rho * length * draft * speed * speed;
+  return {load.X / force, load.Y / force, load.N / (force * length)};
+}
+
+CaptiveSample MakeCaptiveSample(const PimpleSolver& s, const RigidMeshMotion& motion,
+                                std::span<const int> patches, double rho, double nu,
+                                const PrimeScales& scales) {
+  CaptiveSample r;
+  r.time = s.time();
+  r.pose = motion.motion().At(s.time());
+  r.loads = ComputeHullLoads(s, patches, rho, nu, r.pose, motion.motion().options().centre);
+  r.prime = scales.ToPrime(r.loads.Total());
+  return r;
+}
+
+void WriteCaptiveHistory(data::H5Writer& w, const std::vector<CaptiveSample>& rows) {
+  const std::size_t n = rows.size();
+  auto series = [&](const std::string& name, auto get, std::string_view units,
+                    std::string_view description) {
+    std::vector<double> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = get(rows[i]);
+    w.WriteArray("captive/" + name, v, {n}, units, description);
+  };
+  series(
+      "time", [](const CaptiveSample& r) { return r.time; }, "s", "time");
+  series(
+      "X", [](const CaptiveSample& r) { return r.loads.Total().X; }, "N", "surge force, ship axes");
+  series(
+      "Y", [](const CaptiveSample& r) { return r.loads.Total().Y; }, "N",
+      "sway force, ship axes (starboard)");
+  series(
+      "N", [](const CaptiveSample& r) { return r.loads.Total().N; }, "N m",
+      "yaw moment about the reference point");
+  series(
+      "X_pressure", [](const CaptiveSample& r) { return r.loads.pressure.X; }, "N",
+      "pressure part of X");
+  series(
+      "Y_pressure", [](const CaptiveSample& r) { return r.loads.pressure.Y; }, "N",
+      "pressure part of Y");
+  series(
+      "N_pressure", [](const CaptiveSample& r) { return r.loads.pressure.N; }, "N m",
+      "pressure part of N");
+  series(
+      "X_viscous", [](const CaptiveSample& r) { return r.loads.viscous.X; }, "N",
+      "viscous part of X");
+  series(
+      "Y_viscous", [](const CaptiveSample& r) { return r.loads.viscous.Y; }, "N",
+      "viscous part of Y");
+  series(
+      "N_viscous", [](const CaptiveSample& r) { return r.loads.viscous.N; }, "N m",
+      "viscous part of N");
+  series(
+      "X_prime", [](const CaptiveSample& r) { return r.prime.X; }, "1", "X / (0.5 rho L T U^2)");
+  series(
+      "Y_prime", [](const CaptiveSample& r) { return r.prime.Y; }, "1", "Y / (0.5 rho L T U^2)");
+  series(
+      "N_prime", [](const CaptiveSample& r) { return r.prime.N; }, "1", "N / (0.5 rho L^2 T U^2)");
+  series(
+      "x0", [](const CaptiveSample& r) { return r.pose.x0; }, "m",
+      "earth position of the reference point");
+  series(
+      "y0", [](const CaptiveSample& r) { return r.pose.y0; }, "m",
+      "earth position, starboard positive");
+  series(
+      "psi", [](const CaptiveSample& r) { return r.pose.psi; }, "rad",
+      "heading, starboard positive");
+  series(
+      "u", [](const CaptiveSample& r) { return r.pose.u(); }, "m/s", "surge velocity, ship axes");
+  series(
+      "v", [](const CaptiveSample& r) { return r.pose.v(); }, "m/s", "sway velocity, ship axes");
+  series(
+      "r", [](const CaptiveSample& r) { return r.pose.r; }, "rad/s", "yaw rate");
+}
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,245 @@
+// CFD captive campaigns (issue 7, acceptance 5): a campaign stopped part-way
+// (as if killed, several times) and resumed gives the same campaign file bit
+// for bit as an uninterrupted one, finished runs are not run again, runs as
+// parallel worker processes (--jobs 2) give the same result, and the file is
+// the captive schema `kelvin identify` reads, with drift forces of the right
+// signs and symmetry.
+#include "cfd/campaign/cfd_campaign.h"
+
+#include <fcntl.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "data/schema/errors.h"
+#include "data/schema/h5_file.h"
+#include "identification/campaign_file.h"
+#include "identification/captive_io.h"
+#include "tests/test_utilities/test_utilities.h"
+
+namespace kelvin::cfd {
+namespace {
+
+namespace fs = std::filesystem;
+using kelvin::testing::ScopedTempDir;
+using ::testing::HasSubstr;
+
+fs::path DataDir() { return kelvin::testing::SourceDir() / "data/cases/captive_cfd"; }
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The coarse block campaign with its run directories in `dir`.
+fs::path WriteCampaign(const fs::path& dir, const std::string& extra_tests = "") {
+  std::string text = ReadText(DataDir() / "block2d_campaign.yaml");
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace("ship: block2d_ship.yaml", "ship: " + (DataDir() / "block2d_ship.yaml").string());
+  replace("case: block2d_case.yaml", "case: " + (DataDir() / "block2d_case.yaml").string());
+  replace("directory: ../results/block2d_cfd", "directory: " + (dir / "runs").string());
+  if (!extra_tests.empty()) replace("  omega_prime:", extra_tests + "  omega_prime:");
+  fs::create_directories(dir);
+  const fs::path path = dir / "campaign.yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+CampaignRunOptions Quiet() {
+  CampaignRunOptions o;
+  o.progress = false;
+  return o;
+}
+
+void ExpectSameFile(const fs::path& a, const fs::path& b) {
+  const ident::CaptiveCampaign ca = ident::ReadCampaignH5(a), cb = ident::ReadCampaignH5(b);
+  ASSERT_EQ(ca.runs.size(), cb.runs.size());
+  const data::H5Reader ra(a), rb(b);
+  for (std::size_t r = 0; r < ca.runs.size(); ++r) {
+    const std::string& name = ca.runs[r].name;
+    EXPECT_EQ(name, cb.runs[r].name);
+    EXPECT_EQ(ca.runs[r].time, cb.runs[r].time) << name;  // bit for bit
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(ca.runs[r].force[c], cb.runs[r].force[c]) << name << " channel " << c;
+    for (const char* extra : {"X_pressure", "N_viscous", "Y_prime"}) {
+      const std::string ds = "/runs/" + name + "/" + extra;
+      EXPECT_EQ(ra.Read(ds).values, rb.Read(ds).values) << ds;
+    }
+  }
+}
+
+TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
+  ScopedTempDir tmp;
+  // Uninterrupted.
+  const ident::CampaignFile whole = ident::LoadCampaignFile(WriteCampaign(tmp / "whole"));
+  const CampaignRunSummary a = RunCfdCampaign(whole, Quiet());
+  ASSERT_TRUE(a.complete);
+  EXPECT_EQ(a.steps_computed, 3 * 50 + 2 * 120);
+
+  // Stopped after 75 steps (inside the second run, 5 steps after its last
+  // checkpoint), then after 203 more (inside the sway run, 3 steps after its
+  // last checkpoint), then resumed.
+  const ident::CampaignFile killed = ident::LoadCampaignFile(WriteCampaign(tmp / "killed"));
+  CampaignRunOptions o = Quiet();
+  o.stop_after_steps = 75;
+  const CampaignRunSummary b1 = RunCfdCampaign(killed, o);
+  EXPECT_FALSE(b1.complete);
+  EXPECT_EQ(b1.steps_computed, 75);
+  EXPECT_TRUE(fs::exists(tmp / "killed/runs/drift_+0.0deg/result.h5"));
+  EXPECT_TRUE(fs::exists(tmp / "killed/runs/drift_+5.0deg/checkpoint.h5"));
+  EXPECT_FALSE(fs::exists(b1.output));
+  o.stop_after_steps = 203;
+  const CampaignRunSummary b2 = RunCfdCampaign(killed, o);
+  EXPECT_FALSE(b2.complete);
+  const CampaignRunSummary b3 = RunCfdCampaign(killed, Quiet());
+  ASSERT_TRUE(b3.complete);
+  // Each resume repeats only the steps after the last checkpoint (5 and 3
+  // here); the finished runs are skipped.
+  EXPECT_EQ(b2.steps_computed, 203);
+  EXPECT_EQ(b1.steps_computed + b2.steps_computed + b3.steps_computed, a.steps_computed + 8);
+  EXPECT_LT(b3.steps_computed, a.steps_computed - 200);
+  ExpectSameFile(a.output, b3.output);
+  // Nothing left to do: a rerun only rewrites the campaign file.
+  EXPECT_EQ(RunCfdCampaign(killed, Quiet()).steps_computed, 0);
+  ExpectSameFile(a.output, b3.output);
+}
+
+TEST(CfdCampaign, SurvivesSigkill) {
+  ScopedTempDir tmp;
+  const CampaignRunSummary a =
+      RunCfdCampaign(ident::LoadCampaignFile(WriteCampaign(tmp / "whole")), Quiet());
+  ASSERT_TRUE(a.complete);
+  const fs::path p = WriteCampaign(tmp / "killed");
+  const std::string kelvin = (kelvin::testing::ToolsDir() / "kelvin").string();
+  // SIGKILL after 1.5 s: mid-campaign on this machine (the whole takes about
+  // 3 s); whenever it lands, the rerun must end with the same file.
+  const auto killed =
+      kelvin::testing::RunCommand("timeout -s KILL 1.5 " + kelvin + " captive " + p.string());
+  std::printf("killed campaign: exit %d, %s\n", killed.exit_code,
+              fs::exists(tmp / "killed/runs/block2d_cfd.h5") ? "had finished" : "unfinished");
+  const auto resumed = kelvin::testing::RunCommand(kelvin + " captive " + p.string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  ExpectSameFile(a.output, tmp / "killed/runs/block2d_cfd.h5");
+}
+
+TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
+  ScopedTempDir tmp;
+  const ident::CampaignFile serial = ident::LoadCampaignFile(WriteCampaign(tmp / "serial"));
+  const CampaignRunSummary a = RunCfdCampaign(serial, Quiet());
+  ASSERT_TRUE(a.complete);
+  const fs::path parallel = WriteCampaign(tmp / "parallel");
+  const auto r = kelvin::testing::RunCommand((kelvin::testing::ToolsDir() / "kelvin").string() +
+                                             " captive " + parallel.string() + " --jobs 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("5 done, 0 running, 0 left"));
+  EXPECT_THAT(r.output, HasSubstr("ETA"));
+  ExpectSameFile(a.output, tmp / "parallel/runs/block2d_cfd.h5");
+}
+
+TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
+  ScopedTempDir tmp;
+  const ident::CampaignFile f = ident::LoadCampaignFile(WriteCampaign(
+      tmp / "c", "  yaw_drift_deg: [5]\n  circular: [{drift_deg: 0, r_prime: 0.3}]\n"));
+  const CampaignRunSummary s = RunCfdCampaign(f, Quiet());
+  ASSERT_TRUE(s.complete);
+  const ident::CaptiveCampaign c = ident::ReadCampaignH5(s.output);  // validates the schema
+  ASSERT_EQ(c.runs.size(), 7u);
+  EXPECT_EQ(c.runs[5].motion.kind, ident::MotionKind::kYawDrift);
+  EXPECT_EQ(c.runs[6].motion.kind, ident::MotionKind::kCircularMotion);
+  EXPECT_EQ(c.ship.name, "block2d");
+  EXPECT_DOUBLE_EQ(c.ship.mass, 500.0);
+  auto last = [&](const std::string& name, int channel) {
+    for (const auto& run : c.runs) {
+      if (run.name == name) return run.force[channel].back();
+    }
+    ADD_FAILURE() << "no run " << name;
+    return 0.0;
+  };
+  const double y_plus = last("drift_+5.0deg", 1), y_minus = last("drift_-5.0deg", 1);
+  const double n_plus = last("drift_+5.0deg", 2), n_minus = last("drift_-5.0deg", 2);
+  std::printf("drift +-5 deg: Y %.6g / %.6g N, N %.6g / %.6g N m; X(0) %.6g N\n", y_plus, y_minus,
+              n_plus, n_minus, last("drift_+0.0deg", 0));
+  // beta > 0 is v < 0: Y > 0 and N > 0 (Y'_v < 0, N'_v < 0), antisymmetric.
+  EXPECT_GT(y_plus, 0.0);
+  EXPECT_GT(n_plus, 0.0);
+  EXPECT_NEAR(y_plus + y_minus, 0.0, 1e-6 * std::abs(y_plus));
+  EXPECT_NEAR(n_plus + n_minus, 0.0, 1e-6 * std::abs(n_plus));
+  EXPECT_LT(last("drift_+0.0deg", 0), 0.0);  // resistance
+  // Turning to starboard at r' = 0.3: the yaw damping moment opposes the turn.
+  std::printf("circular r' = 0.3: Y %.6g N, N %.6g N m\n", last("circular_+0.0deg_r0.300", 1),
+              last("circular_+0.0deg_r0.300", 2));
+  EXPECT_LT(last("circular_+0.0deg_r0.300", 2), 0.0);
+  // The prime forces beside them: Y' = Y / (0.5 rho L T U^2) with T = d = 1 m.
+  const data::H5Reader r(s.output);
+  EXPECT_DOUBLE_EQ(r.Read("/runs/drift_+5.0deg/Y_prime").values.back(), y_plus / 500.0);
+  EXPECT_EQ(r.StringAttribute("/", "solver"), "cfd");
+}
+
+TEST(CfdCampaign, ARunInAnotherProcessIsNotComputedTwice) {
+  ScopedTempDir tmp;
+  const ident::CampaignFile f = ident::LoadCampaignFile(WriteCampaign(tmp / "c"));
+  fs::create_directories(tmp / "c/runs/drift_+0.0deg");
+  const std::string lock = (tmp / "c/runs/drift_+0.0deg/lock").string();
+  const int fd = ::open(lock.c_str(), O_CREAT | O_RDWR, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  try {
+    RunCfdCampaign(f, Quiet());
+    FAIL() << "ran a locked run";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("run 'drift_+0.0deg' is being computed by another process"));
+  }
+  ::close(fd);
+}
+
+TEST(CfdCampaign, BadCfdSectionIsOneClearError) {
+  ScopedTempDir tmp;
+  {
+    const fs::path p = WriteCampaign(tmp / "a");
+    std::string text = ReadText(p);
+    text.replace(text.find("hull_patches: [obstacle]"), 24, "hull_patches: [hull]");
+    std::ofstream(p) << text;
+    const ident::CampaignFile f = ident::LoadCampaignFile(p);
+    try {
+      RunCfdCampaign(f, Quiet());
+      FAIL() << "accepted an unknown hull patch";
+    } catch (const ConfigError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("cfd.hull_patches: 'hull' is not a patch of the case mesh"));
+      EXPECT_THAT(e.what(), HasSubstr(p.string()));
+    }
+  }
+  {
+    const fs::path p = tmp / "b.yaml";
+    std::ofstream(p)
+        << "campaign: {name: a, ship: s.yaml, solver: cfd, speed: 1}\n"
+           "cfd: {case: c.yaml, steps_per_period: 4}\ntests: {pure_sway_v_prime: [0.1]}\n";
+    try {
+      ident::LoadCampaignFile(p);
+      FAIL();
+    } catch (const ConfigError& e) {
+      EXPECT_THAT(
+          e.what(),
+          HasSubstr("key 'cfd.steps_per_period' = '4': expected at least 8 time steps per period"));
+    }
+  }
+  {
+    const fs::path p = tmp / "c.yaml";
+    std::ofstream(p) << "campaign: {name: a, ship: s.yaml, solver: mmg}\ncfd: {case: c.yaml}\n"
+                        "tests: {pure_sway_v_prime: [0.1]}\n";
+    EXPECT_THROW(ident::LoadCampaignFile(p), ConfigError);
+  }
+}
+
+}  // namespace
+}  // namespace kelvin::cfd
