@@ -264,6 +264,7 @@ TurbulenceSummary KOmegaSst::Correct(const TurbulenceInputs& in) {
     if (wall_cell_production_[i] >= 0.0) P[wall_cells_[i]] = wall_cell_production_[i];
   }
 
+  const double k_amb = opt_.inflow.k(nu_), omega_amb = opt_.inflow.omega(nu_);
   // omega equation.
   {
     FvMatrix<double> m(mesh_);
@@ -281,6 +282,7 @@ TurbulenceSummary KOmegaSst::Correct(const TurbulenceInputs& in) {
       const double limit = opt_.production_limit * opt_.beta_star * (*k_)[c] * om;
       explicit_source[c] = gamma * (nut_[c] > 0.0 ? std::min(S2_[c], limit / nut_[c]) : S2_[c]);
       implicit[c] = beta * om;
+      if (opt_.sustain) explicit_source[c] += beta * omega_amb * omega_amb;
       const double cd = (1.0 - F1_[c]) * cross[c];
       if (cd > 0.0) {
         explicit_source[c] += cd;
@@ -305,6 +307,9 @@ TurbulenceSummary KOmegaSst::Correct(const TurbulenceInputs& in) {
                  geo_.any_correction ? &gk : nullptr);
     std::vector<double> implicit(nc);
     for (int c = 0; c < nc; ++c) implicit[c] = opt_.beta_star * (*omega_)[c];
+    if (opt_.sustain) {
+      for (int c = 0; c < nc; ++c) P[c] += opt_.beta_star * k_amb * omega_amb;
+    }
     AddSource(m, std::span<const double>(P));
     AddImplicitSource(m, implicit);
     m.Relax(std::span<const double>(k_->values()), opt_.relax);

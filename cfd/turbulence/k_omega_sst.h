@@ -77,6 +77,14 @@ struct KOmegaSstOptions {
   ConvectionScheme convection = ConvectionScheme::kUpwind;  // upwind or limited (bounded)
   TimeScheme time = TimeScheme::kEuler;
   double relax = 1.0;  // implicit under-relaxation of k and omega (pseudo-transient runs)
+  // Sustaining terms of Spalart and Rumsey (2007, AIAA J. 45:2544; the
+  // "SST-sust" variant): + beta* k_amb omega_amb in the k equation and
+  // + beta omega_amb^2 in the omega equation, with the inflow values as the
+  // ambient state, so the free-stream turbulence does not decay between the
+  // inlet and the body. Off by default: with towing-tank inflow values
+  // (I = 1%, nu_t/nu = 1-10) the ambient omega exceeds the outer
+  // boundary-layer omega of model-scale plates and damps it.
+  bool sustain = false;
   LinearSolverOptions solver;
   void Validate() const;
 };

@@ -50,8 +50,8 @@ struct FlatPlateRunOptions {
   InflowTurbulence inflow;          // reference speed is set to U
   // Steady-state marching: implicit relaxation of U and of the pressure used
   // in the momentum correction (as SIMPLE), PIMPLE outer correctors.
-  double relax_U = 0.9;
-  double relax_p = 0.5;
+  double relax_U = 0.7;
+  double relax_p = 0.3;
   int n_outer = 1;
   double turbulence_relax = 1.0;
   // Laminar run on the same mesh (the cost baseline of the SST benchmark).
