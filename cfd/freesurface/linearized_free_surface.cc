@@ -139,17 +139,27 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx, const Pre
     for (std::size_t e = 0; e < edges.size(); ++e) {
       edge_flux_[e] = -options_.mesh_velocity(edges[e].centre, t).dot(edges[e].normal);
     }
-    const bool second_order = options_.advection == LinearizedFreeSurfaceOptions::Advection::kLinearUpwind;
+    using Advection = LinearizedFreeSurfaceOptions::Advection;
+    const bool second_order = options_.advection != Advection::kUpwind;
+    const bool quick = options_.advection == Advection::kQuick;
     if (second_order) surface_.Gradient(eta_, grad_);
     auto area = [&](int i) { return surface_.areas()[i]; };
-    // Linear-upwind correction eta_e - eta_up from the upwind face u (lagged
-    // iterate), or 0 (first order) where u has no gradient or the velocity at
-    // u points the other way across the edge.
-    auto correction = [&](std::size_t e, int u, double q_out_of_u) {
+    // High-order correction eta_e - eta_up on edge e from the upwind face u
+    // (lagged iterate), or 0 (first order) where u has no gradient or the
+    // velocity at u points the other way across the edge. Linear upwind:
+    // eta_u + grad_u . (x_e - x_u). QUICK: the mean of that and the linear
+    // interpolation between u and the downwind face d (d < 0 on the rim:
+    // linear upwind).
+    auto correction = [&](std::size_t e, int u, int d, double q_out_of_u) {
       if (!second_order || !surface_.valid_gradient(u)) return 0.0;
       const double q_at_u = -options_.mesh_velocity(surface_.centres()[u], t).dot(edges[e].normal);
       if (q_at_u * q_out_of_u <= 0.0) return 0.0;
-      return grad_[u].dot(edges[e].centre - surface_.centres()[u]);
+      const double lud = grad_[u].dot(edges[e].centre - surface_.centres()[u]);
+      if (!quick || d < 0) return lud;
+      const double to_u = (edges[e].centre - surface_.centres()[u]).norm();
+      const double to_d = (surface_.centres()[d] - edges[e].centre).norm();
+      const double linear = to_u / (to_u + to_d) * (eta_[d] - eta_[u]);
+      return 0.5 * (lud + linear);
     };
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const auto& edge = edges[e];
@@ -164,12 +174,12 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx, const Pre
         // iterate.
         diag[up] += qa / area(up);
         known[down] += qa * eta_[up] / area(down);
-        const double dc = qa * correction(e, up, qa);
+        const double dc = qa * correction(e, up, down, qa);
         known[up] -= dc / area(up);
         known[down] += dc / area(down);
       } else if (q >= 0.0) {
         diag[a] += q / area(a);
-        known[a] -= q * correction(e, a, q) / area(a);
+        known[a] -= q * correction(e, a, -1, q) / area(a);
       } else if (extrapolate_rim_[e]) {
         // Waterline inflow: the pattern leaves the hull with the elevation of
         // the face (zero gradient), implicit.

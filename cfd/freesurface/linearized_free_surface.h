@@ -54,10 +54,14 @@ struct LinearizedFreeSurfaceOptions {
   // Applied kinematic surface pressure p_a (m^2/s^2), e.g. a moving pressure
   // patch. Empty: none.
   std::function<double(const Vector3& x, double t)> surface_pressure;
-  // Face value of eta on the edges of the 2D face mesh: first-order upwind,
-  // or linear upwind (upwind value plus the least-squares gradient of the
-  // upwind face; first order where the direction reverses).
-  enum class Advection { kUpwind, kLinearUpwind };
+  // Face value of eta on the edges of the 2D face mesh: first-order upwind;
+  // linear upwind (upwind value plus the least-squares gradient of the
+  // upwind face); or QUICK, the mean of linear upwind and linear
+  // interpolation (third order on uniform grids: phase error O(k^4 dx^4)
+  // against (k dx)^2 / 12 for linear upwind, which matters for the
+  // wavelength of the pattern). The high-order parts fall back to first
+  // order where the advection direction reverses.
+  enum class Advection { kUpwind, kLinearUpwind, kQuick };
   Advection advection = Advection::kLinearUpwind;
   // Patches across which eta is extrapolated at inflow edges (the hull
   // waterline, where the pattern leaves the hull). On every other inflow
