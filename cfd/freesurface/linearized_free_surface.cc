@@ -124,7 +124,8 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx, const Pre
   const double a_t = bdf2 ? 1.5 : 1.0;
   const std::vector<double>& eta0 = eta_old_.empty() ? eta_ : eta_old_[0];
 
-  // Known part per unit time: the old levels ...
+  // eta_star_ first collects the known part per unit time: the old
+  // levels ...
   std::vector<double>& known = eta_star_;
   std::vector<double> diag(n);
   for (int i = 0; i < n; ++i) {

@@ -8,7 +8,8 @@
 // = 1 m. Half domain (symmetry at y = 0): x in [-1, 4] lambda, y in
 // [0, 2.5] lambda, depth lambda / 2, beaches over 1.25 lambda at x = 4 lambda
 // and y = 2.5 lambda. Pseudo-transient marching at a Courant number of 5 to
-// the steady state.
+// the steady state (Courant 20 reaches the same pattern in more steps; see
+// the limits in linearized_free_surface.h).
 //
 // Checks:
 // - transverse wavelength along the track behind the patch (zero crossings
