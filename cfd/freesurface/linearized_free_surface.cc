@@ -13,6 +13,9 @@ namespace kelvin::cfd {
 
 void LinearizedFreeSurfaceOptions::Validate() const {
   if (!(g > 0.0) || !std::isfinite(g)) throw ConfigError(fmt::format("g = {}; expected > 0 m/s^2", g));
+  if (!(kinematic_courant >= 0.0) || !std::isfinite(kinematic_courant)) {
+    throw ConfigError(fmt::format("kinematic_courant = {}; expected >= 0 (0 = off)", kinematic_courant));
+  }
   if (!(beach.width >= 0.0) || !std::isfinite(beach.width)) {
     throw ConfigError(fmt::format("beach.width = {}; expected >= 0 transverse wavelengths", beach.width));
   }
@@ -190,6 +193,18 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx, const Pre
     }
   }
 
+  if (options_.kinematic_courant > 0.0) {
+    // Local pseudo-time: where the advection rate a_ff exceeds
+    // kinematic_courant / dt, the time term becomes a_ff / kinematic_courant
+    // (eta - eta^n), so that the lagged upstream coupling contracts by
+    // C / (1 + C) per corrector. A steady state does not depend on it.
+    for (int i = 0; i < n; ++i) {
+      const double rate = (diag[i] - a_t / dt - mu_[i]) / options_.kinematic_courant;
+      if (rate <= a_t / dt) continue;
+      known[i] += rate * eta0[i] - (bdf2 ? (2.0 * eta0[i] - 0.5 * eta_old_[1][i]) / dt : eta0[i] / dt);
+      diag[i] += rate - a_t / dt;
+    }
+  }
   const Patch& patch = mesh_.patches()[patch_index_];
   for (int i = 0; i < n; ++i) {
     const int f = patch.start + i;

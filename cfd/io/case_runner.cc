@@ -150,9 +150,10 @@ std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n) 
 }
 
 // p: {type: linearizedFreeSurface, g, mesh_velocity, advection, beach: {width, strength, sides},
-// waterline_patches, pressure_patch: {centre, radius, head}} on a patch in z = 0 (see cfd/freesurface/linearized_free_surface.h).
+// waterline_patches, pressure_patch: {centre, radius, head}, kinematic_courant} on a patch in z = 0 (see cfd/freesurface/linearized_free_surface.h).
 std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, const Mesh& mesh, int patch) {
-  n.ExpectKeys({"type", "g", "mesh_velocity", "advection", "beach", "waterline_patches", "pressure_patch"});
+  n.ExpectKeys({"type", "g", "mesh_velocity", "advection", "beach", "waterline_patches", "pressure_patch",
+                "kinematic_courant"});
   LinearizedFreeSurfaceOptions o;
   if (n.Has("g")) o.g = n.GetPositive("g");
   Vector3 u_b = Vector3::Zero();
@@ -166,6 +167,7 @@ std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, 
                         {{"upwind", Advection::kUpwind},
                          {"linear_upwind", Advection::kLinearUpwind},
                          {"quick", Advection::kQuick}});
+  if (n.Has("kinematic_courant")) o.kinematic_courant = n.GetPositive("kinematic_courant");
   if (n.Has("beach")) {
     const ConfigNode b = n["beach"];
     b.ExpectKeys({"width", "strength", "sides"});
