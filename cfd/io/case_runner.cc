@@ -221,7 +221,7 @@ std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, 
   try {
     return std::make_unique<LinearizedFreeSurface>(mesh, patch, std::move(o));
   } catch (const ConfigError& e) {
-    n["type"].Fail(e.what());
+    n["type"].Fail(std::string("a patch that can carry the free surface; ") + e.what());
   }
 }
 
