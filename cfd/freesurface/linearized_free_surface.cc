@@ -99,6 +99,10 @@ void LinearizedFreeSurface::AdvanceTime(double time) {
     eta_old_[0] = eta_;
     time_ = time;
     armed_ = false;
+    // A moving mesh is placed at the new time before its conditions update;
+    // the patch moves rigidly in the plane, so only its geometry changes (the
+    // beach, computed once, moves with the mesh).
+    surface_.UpdateGeometry(mesh_);
   }
 }
 

@@ -56,30 +56,19 @@ PatchSurface::PatchSurface(const Mesh& mesh, int patch_index) {
   }
 
   const int n = patch.size;
-  centres_.resize(n);
-  areas_.resize(n);
+  patch_start_ = patch.start;
   std::unordered_map<std::uint64_t, int> edge_of;
   std::vector<std::vector<int>> per_face(n);
   for (int i = 0; i < n; ++i) {
-    const int f = patch.start + i;
-    centres_[i] = mesh.face_centres()[f];
-    areas_[i] = mesh.face_area_magnitudes()[f];
-    const std::span<const int> pts = mesh.face(f);
+    const std::span<const int> pts = mesh.face(patch.start + i);
     for (std::size_t k = 0; k < pts.size(); ++k) {
       const int a = pts[k], b = pts[(k + 1) % pts.size()];
       const auto [it, inserted] = edge_of.emplace(EdgeKey(a, b), static_cast<int>(edges_.size()));
       if (inserted) {
         Edge e;
         e.face = i;
-        const Vector3& xa = mesh.points()[a];
-        const Vector3& xb = mesh.points()[b];
-        e.centre = 0.5 * (xa + xb);
-        const Vector3 d = xb - xa;
-        e.normal = Vector3(d.y(), -d.x(), 0.0);
-        // Faces seen from +z run counter-clockwise, so (dy, -dx) already
-        // points out of the face; the check keeps odd point orders safe.
-        if (e.normal.dot(e.centre - centres_[i]) < 0.0) e.normal = -e.normal;
         edges_.push_back(e);
+        edge_points_.push_back({a, b});
       } else {
         Edge& e = edges_[it->second];
         if (e.neighbour >= 0 || e.face == i) {
@@ -119,6 +108,29 @@ PatchSurface::PatchSurface(const Mesh& mesh, int patch_index) {
         if (it != rim_edge.end()) edges_[it->second].rim_patch = q;
       }
     }
+  }
+
+  UpdateGeometry(mesh);
+}
+
+void PatchSurface::UpdateGeometry(const Mesh& mesh) {
+  const int n = static_cast<int>(face_edge_offsets_.size()) - 1;
+  centres_.resize(n);
+  areas_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    centres_[i] = mesh.face_centres()[patch_start_ + i];
+    areas_[i] = mesh.face_area_magnitudes()[patch_start_ + i];
+  }
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    Edge& edge = edges_[e];
+    const Vector3& xa = mesh.points()[edge_points_[e][0]];
+    const Vector3& xb = mesh.points()[edge_points_[e][1]];
+    edge.centre = 0.5 * (xa + xb);
+    const Vector3 d = xb - xa;
+    edge.normal = Vector3(d.y(), -d.x(), 0.0);
+    // Faces seen from +z run counter-clockwise, so (dy, -dx) already points
+    // out of the face; the check keeps odd point orders safe.
+    if (edge.normal.dot(edge.centre - centres_[edge.face]) < 0.0) edge.normal = -edge.normal;
   }
 
   // Least-squares gradient weights 1/|d|^2 with a pseudo-inverse, so that a

@@ -32,6 +32,11 @@ class PatchSurface {
   // than two of its faces.
   PatchSurface(const Mesh& mesh, int patch_index);
 
+  // Recomputes the geometry (centres, areas, edge centres and normals,
+  // least-squares weights) from the current placement of the mesh, for a
+  // mesh that moves rigidly in the plane; the topology stays.
+  void UpdateGeometry(const Mesh& mesh);
+
   int size() const { return static_cast<int>(centres_.size()); }
   const std::string& name() const { return name_; }
   // Face centres and areas (m, m^2), local face order = patch face order.
@@ -42,7 +47,7 @@ class PatchSurface {
   std::span<const int> face_edges(int i) const {
     return {face_edges_.data() + face_edge_offsets_[i], face_edges_.data() + face_edge_offsets_[i + 1]};
   }
-  // Bounding box of the patch points (m).
+  // Bounding box of the patch points at construction (m).
   const Vector3& min() const { return min_; }
   const Vector3& max() const { return max_; }
 
@@ -56,7 +61,9 @@ class PatchSurface {
   std::string name_;
   std::vector<Vector3> centres_;
   std::vector<double> areas_;
+  int patch_start_ = 0;
   std::vector<Edge> edges_;
+  std::vector<std::array<int, 2>> edge_points_;  // mesh point labels of each edge
   std::vector<int> face_edge_offsets_;
   std::vector<int> face_edges_;
   Vector3 min_ = Vector3::Zero();

@@ -80,6 +80,35 @@ TEST(PatchSurface, EdgesNormalsRimAndExactLinearGradient) {
   }
 }
 
+// A rigidly moved copy of the mesh (same topology, points rotated about z
+// and translated in the plane): updating the geometry of a surface built on
+// the original gives the surface built on the copy.
+TEST(PatchSurface, UpdateGeometryFollowsARigidInPlaneMotion) {
+  const Mesh a = Box({5, 3, 2}, true);
+  const Eigen::AngleAxisd rot(0.3, Vector3::UnitZ());
+  std::vector<Vector3> points;
+  for (const Vector3& x : a.points()) points.push_back(rot * x + Vector3(1.5, -0.7, 0.0));
+  std::vector<std::vector<int>> faces;
+  for (int f = 0; f < a.n_faces(); ++f) faces.emplace_back(a.face(f).begin(), a.face(f).end());
+  const Mesh b(points, faces, std::vector<int>(a.owner().begin(), a.owner().end()),
+               std::vector<int>(a.neighbour().begin(), a.neighbour().end()), a.patches());
+  const int top = a.FindPatch("zmax");
+  PatchSurface moved(a, top);
+  moved.UpdateGeometry(b);
+  const PatchSurface fresh(b, top);
+  ASSERT_EQ(moved.edges().size(), fresh.edges().size());
+  for (int i = 0; i < moved.size(); ++i) EXPECT_LT((moved.centres()[i] - fresh.centres()[i]).norm(), 1e-12);
+  for (std::size_t e = 0; e < moved.edges().size(); ++e) {
+    EXPECT_LT((moved.edges()[e].normal - fresh.edges()[e].normal).norm(), 1e-12);
+    EXPECT_LT((moved.edges()[e].normal - rot * PatchSurface(a, top).edges()[e].normal).norm(), 1e-12);
+  }
+  std::vector<double> f(moved.size());
+  for (int i = 0; i < moved.size(); ++i) f[i] = moved.centres()[i].x() + 2.0 * moved.centres()[i].y();
+  std::vector<Vector3> g;
+  moved.Gradient(f, g);
+  for (int i = 0; i < moved.size(); ++i) EXPECT_LT((g[i] - Vector3(1.0, 2.0, 0.0)).norm(), 1e-9);
+}
+
 TEST(PatchSurface, RowOfFacesGetsItsInLineGradient) {
   // The surface of a 2D mesh (one cell across) is a row of faces.
   const Mesh mesh = Box({8, 1, 2});
