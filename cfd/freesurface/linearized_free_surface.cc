@@ -12,28 +12,35 @@
 namespace kelvin::cfd {
 
 void LinearizedFreeSurfaceOptions::Validate() const {
-  if (!(g > 0.0) || !std::isfinite(g)) throw ConfigError(fmt::format("g = {}; expected > 0 m/s^2", g));
+  if (!(g > 0.0) || !std::isfinite(g))
+    throw ConfigError(fmt::format("g = {}; expected > 0 m/s^2", g));
   if (!(kinematic_courant >= 0.0) || !std::isfinite(kinematic_courant)) {
-    throw ConfigError(fmt::format("kinematic_courant = {}; expected >= 0 (0 = off)", kinematic_courant));
+    throw ConfigError(
+        fmt::format("kinematic_courant = {}; expected >= 0 (0 = off)", kinematic_courant));
   }
   if (!(beach.width >= 0.0) || !std::isfinite(beach.width)) {
-    throw ConfigError(fmt::format("beach.width = {}; expected >= 0 transverse wavelengths", beach.width));
+    throw ConfigError(
+        fmt::format("beach.width = {}; expected >= 0 transverse wavelengths", beach.width));
   }
   if (beach.width > 0.0) {
     if (!(beach.strength > 0.0) || !std::isfinite(beach.strength)) {
-      throw ConfigError(fmt::format("beach.strength = {}; expected > 0 (mu_max U / g)", beach.strength));
+      throw ConfigError(
+          fmt::format("beach.strength = {}; expected > 0 (mu_max U / g)", beach.strength));
     }
     if (!(beach.reference_speed > 0.0) || !std::isfinite(beach.reference_speed)) {
-      throw ConfigError(fmt::format(
-          "beach reference speed = {} m/s; a beach is sized in transverse wavelengths 2 pi U^2 / g and needs a "
-          "mesh speed U > 0",
-          beach.reference_speed));
+      throw ConfigError(
+          fmt::format("beach reference speed = {} m/s; a beach is sized in transverse wavelengths "
+                      "2 pi U^2 / g and needs a "
+                      "mesh speed U > 0",
+                      beach.reference_speed));
     }
-    if (beach.sides.empty()) throw ConfigError("beach.sides is empty; expected some of xmin, xmax, ymin, ymax");
+    if (beach.sides.empty())
+      throw ConfigError("beach.sides is empty; expected some of xmin, xmax, ymin, ymax");
   }
 }
 
-LinearizedFreeSurface::LinearizedFreeSurface(const Mesh& mesh, int patch_index, LinearizedFreeSurfaceOptions options)
+LinearizedFreeSurface::LinearizedFreeSurface(const Mesh& mesh, int patch_index,
+                                             LinearizedFreeSurfaceOptions options)
     : Mixed<double>(0.0, 0.0, 1.0),
       mesh_(mesh),
       patch_index_(patch_index),
@@ -52,7 +59,8 @@ LinearizedFreeSurface::LinearizedFreeSurface(const Mesh& mesh, int patch_index, 
   for (const std::string& name : options_.waterline_patches) {
     const int q = mesh.FindPatch(name);
     if (q < 0 || q == patch_index) {
-      throw ConfigError(fmt::format("waterline patch '{}' is not another patch of the mesh {}", name, mesh.source()));
+      throw ConfigError(fmt::format("waterline patch '{}' is not another patch of the mesh {}",
+                                    name, mesh.source()));
     }
     for (std::size_t e = 0; e < surface_.edges().size(); ++e) {
       if (surface_.edges()[e].rim_patch == q) extrapolate_rim_[e] = 1;
@@ -70,10 +78,18 @@ LinearizedFreeSurface::LinearizedFreeSurface(const Mesh& mesh, int patch_index, 
       double d = std::numeric_limits<double>::max();
       for (auto side : beach.sides) {
         switch (side) {
-          case LinearizedFreeSurfaceOptions::Beach::Side::kXMin: d = std::min(d, x.x() - surface_.min().x()); break;
-          case LinearizedFreeSurfaceOptions::Beach::Side::kXMax: d = std::min(d, surface_.max().x() - x.x()); break;
-          case LinearizedFreeSurfaceOptions::Beach::Side::kYMin: d = std::min(d, x.y() - surface_.min().y()); break;
-          case LinearizedFreeSurfaceOptions::Beach::Side::kYMax: d = std::min(d, surface_.max().y() - x.y()); break;
+          case LinearizedFreeSurfaceOptions::Beach::Side::kXMin:
+            d = std::min(d, x.x() - surface_.min().x());
+            break;
+          case LinearizedFreeSurfaceOptions::Beach::Side::kXMax:
+            d = std::min(d, surface_.max().x() - x.x());
+            break;
+          case LinearizedFreeSurfaceOptions::Beach::Side::kYMin:
+            d = std::min(d, x.y() - surface_.min().y());
+            break;
+          case LinearizedFreeSurfaceOptions::Beach::Side::kYMax:
+            d = std::min(d, surface_.max().y() - x.y());
+            break;
         }
       }
       const double s = std::clamp(1.0 - d / width, 0.0, 1.0);
@@ -107,7 +123,8 @@ void LinearizedFreeSurface::AdvanceTime(double time) {
 }
 
 void LinearizedFreeSurface::Update(const BcContext& ctx, std::span<const double> cell_values) {
-  KELVIN_CHECK(&ctx.patch == &mesh_.patches()[patch_index_], "free surface updated on its own patch");
+  KELVIN_CHECK(&ctx.patch == &mesh_.patches()[patch_index_],
+               "free surface updated on its own patch");
   AdvanceTime(ctx.time);
   // Between pressure solves the condition is the plain dynamic condition;
   // during one it keeps the Robin coefficients the pressure equation used,
@@ -121,7 +138,8 @@ void LinearizedFreeSurface::Update(const BcContext& ctx, std::span<const double>
   Mixed<double>::Update(ctx, cell_values);
 }
 
-void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx, const PressureCoupling& coupling) {
+void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
+                                                 const PressureCoupling& coupling) {
   AdvanceTime(ctx.time);
   KELVIN_CHECK(coupling.dt > 0.0, "positive time step");
   const int n = surface_.size();
@@ -205,7 +223,8 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx, const Pre
     for (int i = 0; i < n; ++i) {
       const double rate = (diag[i] - a_t / dt - mu_[i]) / options_.kinematic_courant;
       if (rate <= a_t / dt) continue;
-      known[i] += rate * eta0[i] - (bdf2 ? (2.0 * eta0[i] - 0.5 * eta_old_[1][i]) / dt : eta0[i] / dt);
+      known[i] +=
+          rate * eta0[i] - (bdf2 ? (2.0 * eta0[i] - 0.5 * eta_old_[1][i]) / dt : eta0[i] / dt);
       diag[i] += rate - a_t / dt;
     }
   }
@@ -219,7 +238,8 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx, const Pre
     const double D = coupling.rAUf[f] * mag * DeltaCoeff(mesh_, f);
     const double c = options_.g * dt_eff_[i] * D / mag;
     fraction()[i] = 1.0 / (1.0 + c);
-    ref_value()[i] = options_.g * (eta_star_[i] + dt_eff_[i] * coupling.flux_HbyA[f] / mag) + SurfacePressure(i, t);
+    ref_value()[i] = options_.g * (eta_star_[i] + dt_eff_[i] * coupling.flux_HbyA[f] / mag) +
+                     SurfacePressure(i, t);
   }
   armed_ = true;
   Mixed<double>::Update(ctx, {});
@@ -256,8 +276,9 @@ std::vector<double> LinearizedFreeSurface::State() const {
 void LinearizedFreeSurface::SetState(std::span<const double> s) {
   const std::size_t n = eta_.size();
   if (s.size() != 3 + 3 * n) {
-    throw DataFileError(fmt::format("free-surface state of patch '{}' has {} values; expected {} for {} faces",
-                                    surface_.name(), s.size(), 3 + 3 * n, n));
+    throw DataFileError(
+        fmt::format("free-surface state of patch '{}' has {} values; expected {} for {} faces",
+                    surface_.name(), s.size(), 3 + 3 * n, n));
   }
   time_ = s[0];
   started_ = s[1] != 0.0;

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -24,13 +23,15 @@ std::uint64_t EdgeKey(int a, int b) {
 }  // namespace
 
 PatchSurface::PatchSurface(const Mesh& mesh, int patch_index) {
-  KELVIN_CHECK(patch_index >= 0 && patch_index < static_cast<int>(mesh.patches().size()), "patch index in range");
+  KELVIN_CHECK(patch_index >= 0 && patch_index < static_cast<int>(mesh.patches().size()),
+               "patch index in range");
   const Patch& patch = mesh.patches()[patch_index];
   name_ = patch.name;
   if (patch.size == 0) {
-    throw ConfigError(fmt::format("{}: patch '{}' has no faces; the linearized free surface needs the faces of the "
-                                  "calm-water plane z = 0",
-                                  mesh.source(), patch.name));
+    throw ConfigError(fmt::format(
+        "{}: patch '{}' has no faces; the linearized free surface needs the faces of the "
+        "calm-water plane z = 0",
+        mesh.source(), patch.name));
   }
   // Bounding box first: its size sets the tolerance of the planarity check.
   min_ = Vector3::Constant(std::numeric_limits<double>::max());
@@ -49,8 +50,10 @@ PatchSurface::PatchSurface(const Mesh& mesh, int patch_index) {
     if (z_worst > tol || n.z() < 1.0 - 1e-9) {
       const Vector3& c = mesh.face_centres()[f];
       throw ConfigError(fmt::format(
-          "{}: patch '{}' face {} (centre {:.6g} {:.6g} {:.6g}, normal {:.3g} {:.3g} {:.3g}) is not in the calm-water "
-          "plane; the linearized free surface needs every face at z = 0 with its outward normal along +z",
+          "{}: patch '{}' face {} (centre {:.6g} {:.6g} {:.6g}, normal {:.3g} {:.3g} {:.3g}) is "
+          "not in the calm-water "
+          "plane; the linearized free surface needs every face at z = 0 with its outward normal "
+          "along +z",
           mesh.source(), patch.name, f - patch.start, c.x(), c.y(), c.z(), n.x(), n.y(), n.z()));
     }
   }
@@ -72,9 +75,10 @@ PatchSurface::PatchSurface(const Mesh& mesh, int patch_index) {
       } else {
         Edge& e = edges_[it->second];
         if (e.neighbour >= 0 || e.face == i) {
-          throw ConfigError(fmt::format("{}: patch '{}': the edge between points {} and {} belongs to more than two "
-                                        "faces; the free surface needs a manifold face mesh",
-                                        mesh.source(), patch.name, a, b));
+          throw ConfigError(fmt::format(
+              "{}: patch '{}': the edge between points {} and {} belongs to more than two "
+              "faces; the free surface needs a manifold face mesh",
+              mesh.source(), patch.name, a, b));
         }
         e.neighbour = i;
       }
@@ -152,7 +156,8 @@ void PatchSurface::UpdateGeometry(const Mesh& mesh) {
     if (!(lambda[1] > 0.0)) continue;
     Eigen::Matrix2d inv = Eigen::Matrix2d::Zero();
     for (int k = 0; k < 2; ++k) {
-      if (lambda[k] > 1e-8 * lambda[1]) inv += eig.eigenvectors().col(k) * eig.eigenvectors().col(k).transpose() / lambda[k];
+      if (lambda[k] > 1e-8 * lambda[1])
+        inv += eig.eigenvectors().col(k) * eig.eigenvectors().col(k).transpose() / lambda[k];
     }
     lsq_inverse_[i] = {inv(0, 0), inv(0, 1), inv(1, 0), inv(1, 1)};
     lsq_valid_[i] = 1;
@@ -174,7 +179,8 @@ void PatchSurface::Gradient(std::span<const double> values, std::vector<Vector3>
   for (int i = 0; i < size(); ++i) {
     if (!lsq_valid_[i]) continue;
     const auto& m = lsq_inverse_[i];
-    grad[i] = Vector3(m[0] * rhs[i][0] + m[1] * rhs[i][1], m[2] * rhs[i][0] + m[3] * rhs[i][1], 0.0);
+    grad[i] =
+        Vector3(m[0] * rhs[i][0] + m[1] * rhs[i][1], m[2] * rhs[i][0] + m[3] * rhs[i][1], 0.0);
   }
 }
 

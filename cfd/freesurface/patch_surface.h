@@ -19,9 +19,9 @@ namespace kelvin::cfd {
 class PatchSurface {
  public:
   struct Edge {
-    int face = -1;         // local face index (the side the normal points away from)
-    int neighbour = -1;    // local face index across the edge; -1 on the rim of the patch
-    int rim_patch = -1;    // rim edges: index of the mesh patch that shares the edge (-1 if none)
+    int face = -1;       // local face index (the side the normal points away from)
+    int neighbour = -1;  // local face index across the edge; -1 on the rim of the patch
+    int rim_patch = -1;  // rim edges: index of the mesh patch that shares the edge (-1 if none)
     Vector3 centre = Vector3::Zero();  // m
     Vector3 normal = Vector3::Zero();  // in-plane, |normal| = edge length (m), out of `face`
   };
@@ -45,7 +45,8 @@ class PatchSurface {
   const std::vector<Edge>& edges() const { return edges_; }
   // Edges of local face i (CSR).
   std::span<const int> face_edges(int i) const {
-    return {face_edges_.data() + face_edge_offsets_[i], face_edges_.data() + face_edge_offsets_[i + 1]};
+    return {face_edges_.data() + face_edge_offsets_[i],
+            face_edges_.data() + face_edge_offsets_[i + 1]};
   }
   // Bounding box of the patch points at construction (m).
   const Vector3& min() const { return min_; }

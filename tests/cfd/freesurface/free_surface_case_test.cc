@@ -141,12 +141,14 @@ TEST(FreeSurfaceCase, PatchNotInTheCalmWaterPlaneIsAnError) {
 }
 
 TEST(FreeSurfaceCase, VelocityMustBeZeroGradient) {
-  ExpectConfigError(Replace(CaseText(), "    U: {type: zeroGradient}\n    p:", "    U: {type: slip}\n    p:"),
-                    "zeroGradient on a linearizedFreeSurface patch");
+  ExpectConfigError(
+      Replace(CaseText(), "    U: {type: zeroGradient}\n    p:", "    U: {type: slip}\n    p:"),
+      "zeroGradient on a linearizedFreeSurface patch");
 }
 
 TEST(FreeSurfaceCase, BeachNeedsAMeshVelocity) {
-  ExpectConfigError(Replace(CaseText(), "      mesh_velocity: [-1.2495, 0, 0]\n", ""), "mesh_velocity");
+  ExpectConfigError(Replace(CaseText(), "      mesh_velocity: [-1.2495, 0, 0]\n", ""),
+                    "mesh_velocity");
 }
 
 TEST(FreeSurfaceCase, UnknownBeachSideIsAnError) {
@@ -158,12 +160,14 @@ TEST(FreeSurfaceCase, NegativeBeachWidthIsAnError) {
 }
 
 TEST(FreeSurfaceCase, VerticalMeshVelocityIsAnError) {
-  ExpectConfigError(Replace(CaseText(), "mesh_velocity: [-1.2495, 0, 0]", "mesh_velocity: [-1.2495, 0, 0.1]"),
-                    "mesh_velocity");
+  ExpectConfigError(
+      Replace(CaseText(), "mesh_velocity: [-1.2495, 0, 0]", "mesh_velocity: [-1.2495, 0, 0.1]"),
+      "mesh_velocity");
 }
 
 TEST(FreeSurfaceCase, UnknownWaterlinePatchIsAnError) {
-  ExpectConfigError(Replace(CaseText(), "      advection: quick\n", "      advection: quick\n      waterline_patches: [hull]\n"),
+  ExpectConfigError(Replace(CaseText(), "      advection: quick\n",
+                            "      advection: quick\n      waterline_patches: [hull]\n"),
                     "hull");
 }
 

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <Eigen/Dense>
-
 #include <complex>
 #include <memory>
 #include <vector>
@@ -21,21 +20,25 @@ namespace kelvin::cfd::testing {
 inline std::unique_ptr<PimpleSolver> MakeWaterBox(const Mesh& mesh, LinearizedFreeSurfaceOptions fs,
                                                   TimeScheme time, LinearizedFreeSurface** surface,
                                                   int n_correctors = 2, double tolerance = 1e-12) {
-  auto U = MakeField<Vector3>("U", mesh, [](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
-    if (p.kind == PatchKind::kEmpty) return std::make_unique<Empty<Vector3>>();
-    if (p.name == "zmax") return std::make_unique<ZeroGradient<Vector3>>();
-    return std::make_unique<Slip>();
-  });
+  auto U = MakeField<Vector3>("U", mesh,
+                              [](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
+                                if (p.kind == PatchKind::kEmpty)
+                                  return std::make_unique<Empty<Vector3>>();
+                                if (p.name == "zmax")
+                                  return std::make_unique<ZeroGradient<Vector3>>();
+                                return std::make_unique<Slip>();
+                              });
   LinearizedFreeSurface* lfs = nullptr;
-  auto p = MakeField<double>("p", mesh, [&](const Patch& patch) -> std::unique_ptr<BoundaryCondition<double>> {
-    if (patch.kind == PatchKind::kEmpty) return std::make_unique<Empty<double>>();
-    if (patch.name == "zmax") {
-      auto bc = std::make_unique<LinearizedFreeSurface>(mesh, mesh.FindPatch("zmax"), fs);
-      lfs = bc.get();
-      return bc;
-    }
-    return std::make_unique<ZeroGradient<double>>();
-  });
+  auto p = MakeField<double>(
+      "p", mesh, [&](const Patch& patch) -> std::unique_ptr<BoundaryCondition<double>> {
+        if (patch.kind == PatchKind::kEmpty) return std::make_unique<Empty<double>>();
+        if (patch.name == "zmax") {
+          auto bc = std::make_unique<LinearizedFreeSurface>(mesh, mesh.FindPatch("zmax"), fs);
+          lfs = bc.get();
+          return bc;
+        }
+        return std::make_unique<ZeroGradient<double>>();
+      });
   *surface = lfs;
   PhysicsOptions physics;
   physics.nu = 1e-6;

@@ -38,15 +38,17 @@ constexpr double kG = 9.81;
 constexpr double kLambda = 1.0;  // transverse wavelength 2 pi U^2 / g, m
 
 struct KelvinResult {
-  double wavelength = 0.0;       // m, from the centreline crossings
+  double wavelength = 0.0;  // m, from the centreline crossings
   int crossings = 0;
-  double angle95[2] = {0, 0};    // deg, angle holding 95% of eta^2 dA for r in [1.5 | 2.0, 2.75] lambda
+  double angle95[2] = {0,
+                       0};  // deg, angle holding 95% of eta^2 dA for r in [1.5 | 2.0, 2.75] lambda
   double beyond_wedge = 0.0;     // fraction of eta^2 dA (r in [1.5, 2.75] lambda) beyond 19.47 deg
   double beyond_wedge_10 = 0.0;  // ... beyond 29.47 deg
   double peak = 0.0;             // m, max |eta| behind the patch
   double max_upstream = 0.0;     // m, max |eta| on the centreline for x < -3 r
-  bool upstream_monotone = true;  // centreline for x < -2 r: one sign, |eta| growing toward the patch
-  double change = 0.0;           // max |eta change| over the last step / max |eta|
+  bool upstream_monotone =
+      true;             // centreline for x < -2 r: one sign, |eta| growing toward the patch
+  double change = 0.0;  // max |eta change| over the last step / max |eta|
   int steps = 0;
 };
 
@@ -54,9 +56,9 @@ struct KelvinRun {
   int cells_per_lambda = 16;  // surface faces per transverse wavelength
   double courant = 5.0;       // pseudo-time step U dt / dx
   int max_steps = 200;
-  double tolerance = 3e-4;    // steady: max |d eta| / max |eta| per step
+  double tolerance = 3e-4;  // steady: max |d eta| / max |eta| per step
   int n_outer = 2;
-  bool relax = false;         // U 0.7, p 0.3 in the non-final outer correctors
+  bool relax = false;  // U 0.7, p 0.3 in the non-final outer correctors
   double kinematic_courant = 0.0;
 };
 
@@ -89,21 +91,23 @@ KelvinResult RunKelvin(const KelvinRun& run) {
   fso.beach.sides = {LinearizedFreeSurfaceOptions::Beach::Side::kXMax,
                      LinearizedFreeSurfaceOptions::Beach::Side::kYMax};
 
-  auto Uf = testing::MakeField<Vector3>("U", mesh, [U](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
-    if (p.name == "xmin") return std::make_unique<FixedValue<Vector3>>(Vector3(U, 0.0, 0.0));
-    if (p.name == "xmax" || p.name == "zmax") return std::make_unique<ZeroGradient<Vector3>>();
-    return std::make_unique<Slip>();
-  });
+  auto Uf = testing::MakeField<Vector3>(
+      "U", mesh, [U](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
+        if (p.name == "xmin") return std::make_unique<FixedValue<Vector3>>(Vector3(U, 0.0, 0.0));
+        if (p.name == "xmax" || p.name == "zmax") return std::make_unique<ZeroGradient<Vector3>>();
+        return std::make_unique<Slip>();
+      });
   LinearizedFreeSurface* fs = nullptr;
-  auto pf = testing::MakeField<double>("p", mesh, [&](const Patch& patch) -> std::unique_ptr<BoundaryCondition<double>> {
-    if (patch.name == "zmax") {
-      auto bc = std::make_unique<LinearizedFreeSurface>(mesh, mesh.FindPatch("zmax"), fso);
-      fs = bc.get();
-      return bc;
-    }
-    if (patch.name == "xmax") return std::make_unique<FixedValue<double>>(0.0);
-    return std::make_unique<ZeroGradient<double>>();
-  });
+  auto pf = testing::MakeField<double>(
+      "p", mesh, [&](const Patch& patch) -> std::unique_ptr<BoundaryCondition<double>> {
+        if (patch.name == "zmax") {
+          auto bc = std::make_unique<LinearizedFreeSurface>(mesh, mesh.FindPatch("zmax"), fso);
+          fs = bc.get();
+          return bc;
+        }
+        if (patch.name == "xmax") return std::make_unique<FixedValue<double>>(0.0);
+        return std::make_unique<ZeroGradient<double>>();
+      });
   for (Vector3& u : Uf->values()) u = Vector3(U, 0.0, 0.0);
   PhysicsOptions physics;
   physics.nu = 1e-6;
@@ -140,8 +144,8 @@ KelvinResult RunKelvin(const KelvinRun& run) {
     }
     res.change = max_change / max_eta;
     if (std::getenv("KELVIN_VERBOSE")) {
-      std::printf("step %d Co %.2f max eta %.4e change %.2e p iters %d\n", res.steps, s.courant_max, max_eta,
-                  res.change, s.pressure_iterations);
+      std::printf("step %d Co %.2f max eta %.4e change %.2e p iters %d\n", res.steps, s.courant_max,
+                  max_eta, res.change, s.pressure_iterations);
     }
   }
 
@@ -164,7 +168,8 @@ KelvinResult RunKelvin(const KelvinRun& run) {
   }
   res.crossings = static_cast<int>(crossings.size());
   if (crossings.size() >= 2) {
-    res.wavelength = 2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+    res.wavelength =
+        2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   }
   for (int i = 0; i < fs->surface().size(); ++i) {
     if (x[i].x() > 0.5 * kLambda) res.peak = std::max(res.peak, std::abs(eta[i]));
@@ -175,7 +180,8 @@ KelvinResult RunKelvin(const KelvinRun& run) {
   for (const auto& [xc, e] : line) {
     if (xc < mo.min.x() + 1.5 * dx || xc > -2.0 * r_patch) continue;
     if (xc < -3.0 * r_patch) res.max_upstream = std::max(res.max_upstream, std::abs(e));
-    if (last != 0.0 && (e * last <= 0.0 || std::abs(e) < std::abs(last))) res.upstream_monotone = false;
+    if (last != 0.0 && (e * last <= 0.0 || std::abs(e) < std::abs(last)))
+      res.upstream_monotone = false;
     last = e;
   }
   // Kelvin wedge, by the distribution of wave energy (eta^2 dA) over the
@@ -191,7 +197,8 @@ KelvinResult RunKelvin(const KelvinRun& run) {
     for (int i = 0; i < fs->surface().size(); ++i) {
       const double r = x[i].head<2>().norm();
       if (r < r0 || r > 2.75 * kLambda || fs->damping()[i] > 0.0) continue;
-      energy.emplace_back(std::atan2(x[i].y(), x[i].x()) * 180.0 / kPi, eta[i] * eta[i] * fs->surface().areas()[i]);
+      energy.emplace_back(std::atan2(x[i].y(), x[i].x()) * 180.0 / kPi,
+                          eta[i] * eta[i] * fs->surface().areas()[i]);
       total += energy.back().second;
     }
     std::sort(energy.begin(), energy.end());
@@ -214,13 +221,17 @@ KelvinResult RunKelvin(const KelvinRun& run) {
 
 void CheckPattern(const KelvinResult& r, const char* label) {
   const double error = r.wavelength / kLambda - 1.0;
-  std::printf("%s after %d steps (last relative change %.1e): transverse wavelength %.4f m from %d crossings "
-              "(error %+.2f%% against 2 pi U^2/g); wave energy within %.1f deg (r 1.5-2.75 lambda) and %.1f deg "
-              "(r 2-2.75 lambda), %.1f%% beyond 19.47 deg, %.2f%% beyond 29.47 deg; upstream: max |eta| %.3f of "
-              "the peak, %s\n",
-              label, r.steps, r.change, r.wavelength, r.crossings, 100.0 * error, r.angle95[0], r.angle95[1],
-              100.0 * r.beyond_wedge, 100.0 * r.beyond_wedge_10, r.max_upstream / r.peak,
-              r.upstream_monotone ? "monotone, one sign (no waves)" : "oscillating");
+  std::printf(
+      "%s after %d steps (last relative change %.1e): transverse wavelength %.4f m from %d "
+      "crossings "
+      "(error %+.2f%% against 2 pi U^2/g); wave energy within %.1f deg (r 1.5-2.75 lambda) and "
+      "%.1f deg "
+      "(r 2-2.75 lambda), %.1f%% beyond 19.47 deg, %.2f%% beyond 29.47 deg; upstream: max |eta| "
+      "%.3f of "
+      "the peak, %s\n",
+      label, r.steps, r.change, r.wavelength, r.crossings, 100.0 * error, r.angle95[0],
+      r.angle95[1], 100.0 * r.beyond_wedge, 100.0 * r.beyond_wedge_10, r.max_upstream / r.peak,
+      r.upstream_monotone ? "monotone, one sign (no waves)" : "oscillating");
   EXPECT_LT(r.change, 3e-4);
   EXPECT_GE(r.crossings, 4);
   EXPECT_LT(std::abs(error), 0.03);
@@ -243,7 +254,8 @@ TEST(KelvinPattern, TransverseWavelengthWedgeAndNoUpstreamWaves) {
 // The same at 24 faces per wavelength: a few minutes, so it runs only as
 // the `slow` test kelvin_pattern_fine_test (KELVIN_FREE_SURFACE_FINE=1).
 TEST(KelvinPattern, FineGrid) {
-  if (!std::getenv("KELVIN_FREE_SURFACE_FINE")) GTEST_SKIP() << "slow; set KELVIN_FREE_SURFACE_FINE=1";
+  if (!std::getenv("KELVIN_FREE_SURFACE_FINE"))
+    GTEST_SKIP() << "slow; set KELVIN_FREE_SURFACE_FINE=1";
   KelvinRun run;
   run.cells_per_lambda = 24;
   run.max_steps = 300;
@@ -255,7 +267,8 @@ TEST(KelvinPattern, FineGrid) {
 // capped at Courant 2 reach the same steady pattern as Courant 5 (slow, with
 // the fine grid).
 TEST(KelvinPattern, CourantOneHundredReachesTheSameSteadyPattern) {
-  if (!std::getenv("KELVIN_FREE_SURFACE_FINE")) GTEST_SKIP() << "slow; set KELVIN_FREE_SURFACE_FINE=1";
+  if (!std::getenv("KELVIN_FREE_SURFACE_FINE"))
+    GTEST_SKIP() << "slow; set KELVIN_FREE_SURFACE_FINE=1";
   const KelvinResult reference = RunKelvin(KelvinRun{});
   KelvinRun run;
   run.courant = 100.0;
@@ -265,9 +278,10 @@ TEST(KelvinPattern, CourantOneHundredReachesTheSameSteadyPattern) {
   run.kinematic_courant = 2.0;
   const KelvinResult r = RunKelvin(run);
   CheckPattern(r, "Kelvin pattern at Courant 100");
-  std::printf("Courant 100 against 5: wavelength %.5f against %.5f m (%+.3f%%), peak %.5e against %.5e m\n",
-              r.wavelength, reference.wavelength, 100.0 * (r.wavelength / reference.wavelength - 1.0), r.peak,
-              reference.peak);
+  std::printf(
+      "Courant 100 against 5: wavelength %.5f against %.5f m (%+.3f%%), peak %.5e against %.5e m\n",
+      r.wavelength, reference.wavelength, 100.0 * (r.wavelength / reference.wavelength - 1.0),
+      r.peak, reference.peak);
   EXPECT_NEAR(r.wavelength / reference.wavelength, 1.0, 0.002);
   EXPECT_NEAR(r.peak / reference.peak, 1.0, 0.01);
 }

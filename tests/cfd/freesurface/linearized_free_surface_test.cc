@@ -38,7 +38,8 @@ TEST(PatchSurface, EdgesNormalsRimAndExactLinearGradient) {
     // lengths add up to the perimeter.
     for (int i = 0; i < s.size(); ++i) {
       Vector3 sum = Vector3::Zero();
-      for (int e : s.face_edges(i)) sum += s.edges()[e].face == i ? s.edges()[e].normal : -s.edges()[e].normal;
+      for (int e : s.face_edges(i))
+        sum += s.edges()[e].face == i ? s.edges()[e].normal : -s.edges()[e].normal;
       EXPECT_LT(sum.norm(), 1e-12) << "face " << i;
     }
     // Rim edges lie on the box sides and know the patch across them.
@@ -69,7 +70,8 @@ TEST(PatchSurface, EdgesNormalsRimAndExactLinearGradient) {
     EXPECT_GE(rim, 2 * (6 + 4));
     // Least squares is exact for a linear field.
     std::vector<double> f(s.size());
-    for (int i = 0; i < s.size(); ++i) f[i] = 2.0 * s.centres()[i].x() - 3.0 * s.centres()[i].y() + 1.0;
+    for (int i = 0; i < s.size(); ++i)
+      f[i] = 2.0 * s.centres()[i].x() - 3.0 * s.centres()[i].y() + 1.0;
     std::vector<Vector3> g;
     s.Gradient(f, g);
     for (int i = 0; i < s.size(); ++i) {
@@ -97,13 +99,16 @@ TEST(PatchSurface, UpdateGeometryFollowsARigidInPlaneMotion) {
   moved.UpdateGeometry(b);
   const PatchSurface fresh(b, top);
   ASSERT_EQ(moved.edges().size(), fresh.edges().size());
-  for (int i = 0; i < moved.size(); ++i) EXPECT_LT((moved.centres()[i] - fresh.centres()[i]).norm(), 1e-12);
+  for (int i = 0; i < moved.size(); ++i)
+    EXPECT_LT((moved.centres()[i] - fresh.centres()[i]).norm(), 1e-12);
   for (std::size_t e = 0; e < moved.edges().size(); ++e) {
     EXPECT_LT((moved.edges()[e].normal - fresh.edges()[e].normal).norm(), 1e-12);
-    EXPECT_LT((moved.edges()[e].normal - rot * PatchSurface(a, top).edges()[e].normal).norm(), 1e-12);
+    EXPECT_LT((moved.edges()[e].normal - rot * PatchSurface(a, top).edges()[e].normal).norm(),
+              1e-12);
   }
   std::vector<double> f(moved.size());
-  for (int i = 0; i < moved.size(); ++i) f[i] = moved.centres()[i].x() + 2.0 * moved.centres()[i].y();
+  for (int i = 0; i < moved.size(); ++i)
+    f[i] = moved.centres()[i].x() + 2.0 * moved.centres()[i].y();
   std::vector<Vector3> g;
   moved.Gradient(f, g);
   for (int i = 0; i < moved.size(); ++i) EXPECT_LT((g[i] - Vector3(1.0, 2.0, 0.0)).norm(), 1e-9);
@@ -131,7 +136,8 @@ TEST(LinearizedFreeSurface, PatchOffTheCalmWaterPlaneIsAConfigError) {
       LinearizedFreeSurface bc(mesh, mesh.FindPatch(name), {});
       FAIL() << name;
     } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.what()).find("not in the calm-water plane"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("not in the calm-water plane"), std::string::npos)
+          << e.what();
       EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
     }
   }
@@ -200,7 +206,8 @@ TEST(LinearizedFreeSurface, RobinCoefficientsAndConsistentElevationUpdate) {
       const Vector3 nf = mesh.face_areas()[f] / mag;
       const double dc = 1.0 / nf.dot(mesh.deltas()[f]);
       const double dt_eff = dt / a_t;
-      const double eta_star = backward ? (2.0 * eta_prev[i] - 0.5 * eta_prev2[i]) / 1.5 : eta_prev[i];
+      const double eta_star =
+          backward ? (2.0 * eta_prev[i] - 0.5 * eta_prev2[i]) / 1.5 : eta_prev[i];
       const double D = rAUf[f] * mag * dc;
       const double w = 1.0 / (1.0 + kG * dt_eff * D / mag);
       const double ref = kG * (eta_star + dt_eff * phi_HbyA[f] / mag) + kPa;
@@ -214,7 +221,8 @@ TEST(LinearizedFreeSurface, RobinCoefficientsAndConsistentElevationUpdate) {
     // The solver's boundary flux from these coefficients, then eta.
     for (int i = 0; i < n; ++i) {
       const int f = patch.start + i;
-      const double sn_grad = bc.gradient_internal()[i] * cells[mesh.owner()[f]] + bc.gradient_boundary()[i];
+      const double sn_grad =
+          bc.gradient_internal()[i] * cells[mesh.owner()[f]] + bc.gradient_boundary()[i];
       flux[f] = phi_HbyA[f] - rAUf[f] * mesh.face_area_magnitudes()[f] * sn_grad;
     }
     const double volume_before = bc.Volume();
@@ -251,7 +259,8 @@ TEST(LinearizedFreeSurface, AdvectionMovesTheCentroidAtTheMeshSpeed) {
     o.advection = scheme;
     LinearizedFreeSurface bc(mesh, top, o);
     std::vector<double> eta(patch.size);
-    for (int i = 0; i < patch.size; ++i) eta[i] = std::exp(-std::pow((bc.surface().centres()[i].x() - 1.2) / 0.25, 2));
+    for (int i = 0; i < patch.size; ++i)
+      eta[i] = std::exp(-std::pow((bc.surface().centres()[i].x() - 1.2) / 0.25, 2));
     bc.SetEta(eta);
     auto centroid = [&]() {
       double m = 0.0, mx = 0.0;

@@ -57,10 +57,10 @@ double DiscreteDtN(double k, double dx, double dz, int nz) {
   // Rows j = 0 (bottom) ... nz-1 (top), each multiplied by dz^2.
   std::vector<double> lo(nz, -1.0), di(nz), up(nz, -1.0), rhs(nz, 0.0);
   for (int j = 0; j < nz; ++j) di[j] = 2.0 + lx * dz * dz;
-  di[0] = 1.0 + lx * dz * dz;        // Neumann bottom
-  di[nz - 1] = 3.0 + lx * dz * dz;   // face at dz/2: 2 (p - p_f) + (p - p_below)
-  rhs[nz - 1] = 2.0;                 // p_f = 1
-  for (int j = 1; j < nz; ++j) {     // Thomas algorithm
+  di[0] = 1.0 + lx * dz * dz;       // Neumann bottom
+  di[nz - 1] = 3.0 + lx * dz * dz;  // face at dz/2: 2 (p - p_f) + (p - p_below)
+  rhs[nz - 1] = 2.0;                // p_f = 1
+  for (int j = 1; j < nz; ++j) {    // Thomas algorithm
     const double m = lo[j] / di[j - 1];
     di[j] -= m * up[j - 1];
     rhs[j] -= m * rhs[j - 1];
@@ -130,10 +130,13 @@ TEST(StandingWave, DispersionFrequencyWithinOnePercentAtSmallStep) {
   const std::complex<double> z = 1.5 - 2.0 / G + 0.5 / (G * G);
   const double omega_h = z.imag() / dt;
   const double sigma_h = -z.real() / dt;
-  std::printf("standing wave (BDF2, dt = T/100 = %.5f s): omega exact %.6f rad/s, measured %.6f (error %+.3f%%), "
-              "space-discrete %.6f (error %+.3f%%); damping %.4f%% per period (space-discrete rate %.2e 1/s)\n",
-              dt, omega, omega_measured, 100.0 * (omega_measured / omega - 1.0), omega_h,
-              100.0 * (omega_h / omega - 1.0), 100.0 * damping_per_period, sigma_h);
+  std::printf(
+      "standing wave (BDF2, dt = T/100 = %.5f s): omega exact %.6f rad/s, measured %.6f (error "
+      "%+.3f%%), "
+      "space-discrete %.6f (error %+.3f%%); damping %.4f%% per period (space-discrete rate %.2e "
+      "1/s)\n",
+      dt, omega, omega_measured, 100.0 * (omega_measured / omega - 1.0), omega_h,
+      100.0 * (omega_h / omega - 1.0), 100.0 * damping_per_period, sigma_h);
   EXPECT_NEAR(omega_measured / omega, 1.0, 0.01);
   EXPECT_NEAR(omega_h / omega, 1.0, 0.01);
   // BDF2 alone damps 0.04% per period at this step; allow a few times that.
@@ -162,29 +165,35 @@ TEST(StandingWave, DispersionFrequencyWithinOnePercentAtSmallStep) {
 TEST(StandingWave, StableAndOnTheImplicitEulerCurveFarBeyondTheExplicitLimit) {
   const double omega = ExactOmega();
   const double dt_expl = ExplicitLimit();
-  std::printf("explicit gravity-wave limit dt_expl = %.5f s (T = %.4f s)\n", dt_expl, 2.0 * kPi / omega);
+  std::printf("explicit gravity-wave limit dt_expl = %.5f s (T = %.4f s)\n", dt_expl,
+              2.0 * kPi / omega);
   for (double ratio : {10.0, 30.0, 100.0}) {
     const double dt = ratio * dt_expl;
     const double theta = omega * dt;
     const std::vector<double> a = ModalAmplitude(TimeScheme::kEuler, dt, 8);
     ASSERT_EQ(a.size(), 9u);
     // Stable: never above the start and decayed by orders of magnitude.
-    for (std::size_t n = 1; n < a.size(); ++n) EXPECT_LT(std::abs(a[n]), std::abs(a[0])) << "step " << n;
+    for (std::size_t n = 1; n < a.size(); ++n)
+      EXPECT_LT(std::abs(a[n]), std::abs(a[0])) << "step " << n;
     EXPECT_LT(std::abs(a.back()), 1e-3 * std::abs(a[0]));
     const double omega_first = std::sqrt(a[0] / a[1] - 1.0) / dt;
-    std::printf("dt = %.0f x dt_expl = %.4f s (omega dt = %.1f): first-step factor %.4e (Euler %.4e), recovered "
-                "omega %.5f (error %+.3f%%)\n",
-                ratio, dt, theta, a[1] / a[0], 1.0 / (1.0 + theta * theta), omega_first,
-                100.0 * (omega_first / omega - 1.0));
+    std::printf(
+        "dt = %.0f x dt_expl = %.4f s (omega dt = %.1f): first-step factor %.4e (Euler %.4e), "
+        "recovered "
+        "omega %.5f (error %+.3f%%)\n",
+        ratio, dt, theta, a[1] / a[0], 1.0 / (1.0 + theta * theta), omega_first,
+        100.0 * (omega_first / omega - 1.0));
     EXPECT_NEAR(omega_first / omega, 1.0, ratio < 50.0 ? 0.01 : 0.02);
     if (ratio > 50.0) continue;
     const std::complex<double> G = testing::PronyRoot(a, 1);
     const std::complex<double> inv = 1.0 / G;  // = 1 - i omega_h dt for implicit Euler
     const double omega_h = -inv.imag() / dt;
-    std::printf("  Prony: |G| = %.5f (Euler %.5f), observed omega %.4f (Euler %.4f, exact %.4f), recovered omega "
-                "%.5f (error %+.3f%%)\n",
-                std::abs(G), 1.0 / std::sqrt(1.0 + theta * theta), std::arg(G) / dt, std::atan(theta) / dt, omega,
-                omega_h, 100.0 * (omega_h / omega - 1.0));
+    std::printf(
+        "  Prony: |G| = %.5f (Euler %.5f), observed omega %.4f (Euler %.4f, exact %.4f), recovered "
+        "omega "
+        "%.5f (error %+.3f%%)\n",
+        std::abs(G), 1.0 / std::sqrt(1.0 + theta * theta), std::arg(G) / dt, std::atan(theta) / dt,
+        omega, omega_h, 100.0 * (omega_h / omega - 1.0));
     EXPECT_LT(std::abs(G), 1.0);
     EXPECT_NEAR(std::abs(G) * std::sqrt(1.0 + theta * theta), 1.0, 0.01);
     EXPECT_NEAR(std::arg(G) / std::atan(theta), 1.0, 0.01);

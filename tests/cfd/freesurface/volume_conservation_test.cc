@@ -63,19 +63,23 @@ TEST(VolumeConservation, ElevationVolumeEqualsIntegratedFluxToRoundOff) {
       const double V = fs->Volume();
       const double F = PatchFlux(*solver, top);
       double abs_flux = 0.0;
-      for (int f = top.start; f < top.start + top.size; ++f) abs_flux += std::abs(solver->flux()[f]);
+      for (int f = top.start; f < top.start + top.size; ++f)
+        abs_flux += std::abs(solver->flux()[f]);
       flux_scale = std::max(flux_scale, dt * abs_flux);
       // The solver uses Euler on its first step.
       const bool bdf2 = v.time == TimeScheme::kBackward && n >= 2;
-      const double balance = bdf2 ? 1.5 * V - 2.0 * V_prev + 0.5 * V_prev2 - dt * F : V - V_prev - dt * F;
+      const double balance =
+          bdf2 ? 1.5 * V - 2.0 * V_prev + 0.5 * V_prev2 - dt * F : V - V_prev - dt * F;
       worst_balance = std::max(worst_balance, std::abs(balance));
       worst_drift = std::max(worst_drift, std::abs(V - V0));
       V_prev2 = V_prev;
       V_prev = V;
     }
-    std::printf("%s: V0 = %.6e m^3, max |volume balance| = %.2e m^3 (%.1e of dt sum|F| = %.2e), max |V - V0| = "
-                "%.2e m^3\n",
-                v.name, V0, worst_balance, worst_balance / flux_scale, flux_scale, worst_drift);
+    std::printf(
+        "%s: V0 = %.6e m^3, max |volume balance| = %.2e m^3 (%.1e of dt sum|F| = %.2e), max |V - "
+        "V0| = "
+        "%.2e m^3\n",
+        v.name, V0, worst_balance, worst_balance / flux_scale, flux_scale, worst_drift);
     // Round-off: a few ulps of the terms summed over ~60 faces.
     EXPECT_LT(worst_balance, 1e-14 * V0) << v.name;
     // Closed box: sum F is the residual of the pressure solve (relative
