@@ -12,6 +12,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cfd/mesh/mesh.h"
@@ -44,6 +45,18 @@ struct Traits<Vector3> {
   static double MagSqr(const Vector3& a) { return a.squaredNorm(); }
 };
 
+// What the pressure corrector hands to the pressure conditions before it
+// assembles the pressure equation, so that a condition with its own unknown
+// (the free surface, eta) can fold the predicted boundary flux
+//   F_f = flux_HbyA_f - rAUf_f |S_f| snGrad(p)_f
+// into implicit coefficients. The spans cover every face of the mesh.
+struct PressureCoupling {
+  double dt = 0.0;                     // s
+  bool backward = false;               // second-order backward (BDF2) in time this step
+  std::span<const double> rAUf;        // 1/A of the momentum equation on faces (s)
+  std::span<const double> flux_HbyA;   // Rhie-Chow flux of H/A (m^3/s)
+};
+
 // What a condition may look at when it updates.
 struct BcContext {
   const Mesh& mesh;
@@ -65,6 +78,12 @@ class BoundaryCondition {
   // Hook after the pressure correction with the corrected face flux (the
   // free surface updates eta here).
   virtual void CorrectAfterFlux(const BcContext&, std::span<const double> /*face_flux*/) {}
+  // Hook before each pressure solve of a corrector (see PressureCoupling);
+  // must refresh the four coefficients if it changes them.
+  virtual void PreparePressureSolve(const BcContext&, const PressureCoupling&) {}
+  // Named per-face fields of the condition's own unknowns (e.g. eta), for
+  // patch output.
+  virtual std::vector<std::pair<std::string, std::vector<double>>> FaceFields() const { return {}; }
   // Extra per-face state (e.g. eta) for checkpoints.
   virtual std::vector<double> State() const { return {}; }
   virtual void SetState(std::span<const double>) {}

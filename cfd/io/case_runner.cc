@@ -6,8 +6,10 @@
 #include <chrono>
 #include <ctime>
 #include <cmath>
+#include <map>
 
 #include "cfd/bc/outlet_inlet.h"
+#include "cfd/freesurface/linearized_free_surface.h"
 #include "cfd/io/checkpoint.h"
 #include "cfd/io/vtu_writer.h"
 #include "cfd/mesh/box_mesh.h"
@@ -171,7 +173,83 @@ std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n, 
       "one of fixedValue, noSlip, movingWall, movingWallVelocity, zeroGradient, slip, inletOutlet, farField, empty");
 }
 
-std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n) {
+// p: {type: linearizedFreeSurface, g, mesh_velocity, advection, beach: {width, strength, sides},
+// waterline_patches, pressure_patch: {centre, radius, head}, kinematic_courant} on a patch in z = 0 (see cfd/freesurface/linearized_free_surface.h).
+std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, const Mesh& mesh, int patch) {
+  n.ExpectKeys({"type", "g", "mesh_velocity", "advection", "beach", "waterline_patches", "pressure_patch",
+                "kinematic_courant"});
+  LinearizedFreeSurfaceOptions o;
+  if (n.Has("g")) o.g = n.GetPositive("g");
+  Vector3 u_b = Vector3::Zero();
+  if (n.Has("mesh_velocity")) {
+    u_b = GetVector(n, "mesh_velocity");
+    if (u_b.z() != 0.0) n["mesh_velocity"].Fail("an in-plane velocity [u, v, 0] (the free surface stays at z = 0)");
+    o.mesh_velocity = [u_b](const Vector3&, double) { return u_b; };
+  }
+  using Advection = LinearizedFreeSurfaceOptions::Advection;
+  o.advection = GetEnum(n, "advection", o.advection,
+                        {{"upwind", Advection::kUpwind},
+                         {"linear_upwind", Advection::kLinearUpwind},
+                         {"quick", Advection::kQuick}});
+  if (n.Has("kinematic_courant")) o.kinematic_courant = n.GetPositive("kinematic_courant");
+  if (n.Has("beach")) {
+    const ConfigNode b = n["beach"];
+    b.ExpectKeys({"width", "strength", "sides"});
+    o.beach.width = b.GetPositive("width");
+    if (b.Has("strength")) o.beach.strength = b.GetPositive("strength");
+    if (u_b.norm() == 0.0) {
+      b["width"].Fail("a mesh_velocity != 0 first: the beach width is in transverse wavelengths 2 pi U^2 / g");
+    }
+    o.beach.reference_speed = u_b.norm();
+    using Side = LinearizedFreeSurfaceOptions::Beach::Side;
+    for (const ConfigNode& item : b["sides"].Items()) {
+      const std::string side = item.As<std::string>();
+      if (side == "xmin") {
+        o.beach.sides.push_back(Side::kXMin);
+      } else if (side == "xmax") {
+        o.beach.sides.push_back(Side::kXMax);
+      } else if (side == "ymin") {
+        o.beach.sides.push_back(Side::kYMin);
+      } else if (side == "ymax") {
+        o.beach.sides.push_back(Side::kYMax);
+      } else {
+        item.Fail("one of xmin, xmax, ymin, ymax (sides of the patch's bounding box)");
+      }
+    }
+    if (o.beach.sides.empty()) b["sides"].Fail("at least one of xmin, xmax, ymin, ymax");
+  }
+  if (n.Has("pressure_patch")) {
+    // A Gaussian surface pressure p_a = g head exp(-|x - c|^2 / r^2) (a
+    // Havelock pressure distribution: the hull-free Kelvin-wake case).
+    const ConfigNode pp = n["pressure_patch"];
+    pp.ExpectKeys({"centre", "radius", "head"});
+    const std::vector<double> c = pp["centre"].As<std::vector<double>>();
+    if (c.size() != 2) pp["centre"].Fail("a list of 2 numbers [x, y] (m)");
+    const double radius = pp.GetPositive("radius");
+    const double head = pp.Get<double>("head");
+    if (!std::isfinite(head)) pp["head"].Fail("a finite pressure head (m)");
+    const double g = o.g;
+    const Vector3 centre(c[0], c[1], 0.0);
+    o.surface_pressure = [=](const Vector3& x, double) {
+      return g * head * std::exp(-(x - centre).head<2>().squaredNorm() / (radius * radius));
+    };
+  }
+  if (n.Has("waterline_patches")) {
+    for (const ConfigNode& item : n["waterline_patches"].Items()) {
+      const std::string name = item.As<std::string>();
+      const int q = mesh.FindPatch(name);
+      if (q < 0 || q == patch) item.Fail("another patch of the mesh (the hull at the waterline)");
+      o.waterline_patches.push_back(name);
+    }
+  }
+  try {
+    return std::make_unique<LinearizedFreeSurface>(mesh, patch, std::move(o));
+  } catch (const ConfigError& e) {
+    n["type"].Fail(std::string("a patch that can carry the free surface; ") + e.what());
+  }
+}
+
+std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, const Mesh& mesh, int patch) {
   const std::string type = n.Get<std::string>("type");
   if (type == "fixedValue") {
     n.ExpectKeys({"type", "value"});
@@ -199,7 +277,8 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n) {
     if (!(f >= 0.0 && f <= 1.0)) n["fraction"].Fail("a value fraction in [0, 1]");
     return std::make_unique<Mixed<double>>(n.Get<double>("value", 0.0), n.Get<double>("gradient", 0.0), f);
   }
-  n["type"].Fail("one of fixedValue, zeroGradient, outletInlet, farField, empty, mixed");
+  if (type == "linearizedFreeSurface") return LoadFreeSurface(n, mesh, patch);
+  n["type"].Fail("one of fixedValue, zeroGradient, outletInlet, farField, empty, mixed, linearizedFreeSurface");
 }
 
 }  // namespace
@@ -306,7 +385,10 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
     const ConfigNode pn = b[p.name];
     pn.ExpectKeys({"U", "p"});
     u_bcs.push_back(LoadVelocityBc(pn["U"], c.motion.get()));
-    p_bcs.push_back(LoadPressureBc(pn["p"]));
+    p_bcs.push_back(LoadPressureBc(pn["p"], mesh, static_cast<int>(p_bcs.size())));
+    if (p_bcs.back()->type() == "linearizedFreeSurface" && u_bcs.back()->type() != "zeroGradient") {
+      pn["U"]["type"].Fail("zeroGradient on a linearizedFreeSurface patch (its flux comes from the pressure equation)");
+    }
   }
   auto U = std::make_unique<VectorField>("U", mesh, std::move(u_bcs));
   auto p = std::make_unique<ScalarField>("p", mesh, std::move(p_bcs));
@@ -382,6 +464,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   std::vector<int> force_patch_index;
   for (const std::string& name : c.force_patches) force_patch_index.push_back(mesh.FindPatch(name));
   PvdSeries pvd(c.output_directory / "fields.pvd");
+  std::map<std::string, PvdSeries> surface_pvd;
   auto write_fields = [&]() {
     VtuCellData u{"U", 3, {}}, p{"p", 1, {}};
     for (int i = 0; i < mesh.n_cells(); ++i) {
@@ -391,6 +474,26 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     const fs::path file = c.output_directory / fmt::format("fields_{:06d}.vtu", solver.step());
     WriteVtu(file, mesh, {u, p});
     pvd.Add(solver.time(), file);
+    // Patches whose conditions have their own unknowns (eta): a surface file
+    // with those, p and U per face, in a series of their own.
+    for (int k = 0; k < solver.p().n_patches(); ++k) {
+      auto fields = solver.p().bc(k).FaceFields();
+      if (fields.empty()) continue;
+      const Patch& patch = mesh.patches()[k];
+      std::vector<VtuCellData> data;
+      for (auto& [name, values] : fields) data.push_back({name, 1, std::move(values)});
+      VtuCellData pf{"p", 1, {}}, uf{"U", 3, {}};
+      for (int f = patch.start; f < patch.start + patch.size; ++f) {
+        pf.values.push_back(solver.p().boundary()[f - mesh.n_internal_faces()]);
+        for (int d = 0; d < 3; ++d) uf.values.push_back(solver.U().boundary()[f - mesh.n_internal_faces()][d]);
+      }
+      data.push_back(std::move(pf));
+      data.push_back(std::move(uf));
+      const fs::path surface_file = c.output_directory / fmt::format("{}_{:06d}.vtp", patch.name, solver.step());
+      WritePatchVtp(surface_file, mesh, patch, data);
+      auto [series, inserted] = surface_pvd.try_emplace(patch.name, c.output_directory / (patch.name + ".pvd"));
+      series->second.Add(solver.time(), surface_file);
+    }
   };
   constexpr std::size_t kForceColumn = 9;
   auto write_history = [&]() {

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "data/schema/atomic_file.h"
+#include "data/schema/errors.h"
 
 namespace kelvin::cfd {
 
@@ -70,6 +71,55 @@ void WriteVtu(const std::filesystem::path& path, const Mesh& mesh, const std::ve
     append("</DataArray>\n");
   }
   append("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+  data::WriteFileAtomically(path, out);
+}
+
+void WritePatchVtp(const std::filesystem::path& path, const Mesh& mesh, const Patch& patch,
+                   const std::vector<VtuCellData>& face_data) {
+  // The patch's own points, numbered in order of first use.
+  std::vector<int> local(mesh.n_points(), -1);
+  std::vector<int> used;
+  std::string connectivity, offsets;
+  long long count = 0;
+  for (int f = patch.start; f < patch.start + patch.size; ++f) {
+    for (int p : mesh.face(f)) {
+      if (local[p] < 0) {
+        local[p] = static_cast<int>(used.size());
+        used.push_back(p);
+      }
+      connectivity += fmt::format("{} ", local[p]);
+    }
+    connectivity += "\n";
+    count += static_cast<long long>(mesh.face(f).size());
+    offsets += fmt::format("{}\n", count);
+  }
+  std::string out = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\">\n";
+  out += fmt::format(
+      "<PolyData>\n<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+      "NumberOfPolys=\"{}\">\n",
+      used.size(), patch.size);
+  out += "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (int p : used) {
+    const Vector3& x = mesh.points()[p];
+    out += fmt::format("{:.9g} {:.9g} {:.9g}\n", x.x(), x.y(), x.z());
+  }
+  out += "</DataArray>\n</Points>\n<Polys>\n";
+  out += "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n" + connectivity + "</DataArray>\n";
+  out += "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n" + offsets + "</DataArray>\n";
+  out += "</Polys>\n<CellData>\n";
+  for (const VtuCellData& d : face_data) {
+    KELVIN_CHECK(d.values.size() == static_cast<std::size_t>(patch.size) * d.components, "one value per patch face");
+    out += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
+                       d.name, d.components);
+    for (int i = 0; i < patch.size; ++i) {
+      for (int k = 0; k < d.components; ++k) {
+        out += fmt::format("{:.9g}{}", d.values[static_cast<std::size_t>(i) * d.components + k],
+                           k + 1 == d.components ? "\n" : " ");
+      }
+    }
+    out += "</DataArray>\n";
+  }
+  out += "</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
   data::WriteFileAtomically(path, out);
 }
 

@@ -1,5 +1,6 @@
-// VTK XML unstructured-grid output (.vtu, every cell as a VTK polyhedron) and
-// the .pvd collection that ties the time steps together for ParaView.
+// VTK XML unstructured-grid output (.vtu, every cell as a VTK polyhedron),
+// patch surfaces as polygon data (.vtp), and the .pvd collection that ties
+// the time steps together for ParaView.
 #pragma once
 
 #include <filesystem>
@@ -19,6 +20,12 @@ struct VtuCellData {
 
 // Writes one .vtu file atomically.
 void WriteVtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<VtuCellData>& data);
+
+// Writes the faces of one boundary patch as VTK XML polygon data (.vtp),
+// atomically, with per-face data (n_faces * components values each): the
+// wave elevation on the free surface, for instance.
+void WritePatchVtp(const std::filesystem::path& path, const Mesh& mesh, const Patch& patch,
+                   const std::vector<VtuCellData>& face_data);
 
 // A .pvd series: Add() records a file and rewrites the collection.
 class PvdSeries {

@@ -260,6 +260,13 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
     }
   }
 
+  // Conditions with their own unknowns (the free surface) turn the predicted
+  // boundary flux into implicit pressure coefficients.
+  const PressureCoupling coupling{dt, backward, rAUf, phi_HbyA};
+  for (int p = 0; p < p_->n_patches(); ++p) {
+    p_->bc(p).PreparePressureSolve(BcContext{mesh_, mesh_.patches()[p], time_, phi_}, coupling);
+  }
+
   // Does any boundary fix the pressure level?
   bool fixed_level = false;
   for (int p = 0; p < p_->n_patches(); ++p) {

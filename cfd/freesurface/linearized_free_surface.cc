@@ -1,0 +1,306 @@
+#include "cfd/freesurface/linearized_free_surface.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "data/schema/errors.h"
+
+namespace kelvin::cfd {
+
+void LinearizedFreeSurfaceOptions::Validate() const {
+  if (!(g > 0.0) || !std::isfinite(g))
+    throw ConfigError(fmt::format("g = {}; expected > 0 m/s^2", g));
+  if (!(kinematic_courant >= 0.0) || !std::isfinite(kinematic_courant)) {
+    throw ConfigError(
+        fmt::format("kinematic_courant = {}; expected >= 0 (0 = off)", kinematic_courant));
+  }
+  if (!(beach.width >= 0.0) || !std::isfinite(beach.width)) {
+    throw ConfigError(
+        fmt::format("beach.width = {}; expected >= 0 transverse wavelengths", beach.width));
+  }
+  if (beach.width > 0.0) {
+    if (!(beach.strength > 0.0) || !std::isfinite(beach.strength)) {
+      throw ConfigError(
+          fmt::format("beach.strength = {}; expected > 0 (mu_max U / g)", beach.strength));
+    }
+    if (!(beach.reference_speed > 0.0) || !std::isfinite(beach.reference_speed)) {
+      throw ConfigError(
+          fmt::format("beach reference speed = {} m/s; a beach is sized in transverse wavelengths "
+                      "2 pi U^2 / g and needs a "
+                      "mesh speed U > 0",
+                      beach.reference_speed));
+    }
+    if (beach.sides.empty())
+      throw ConfigError("beach.sides is empty; expected some of xmin, xmax, ymin, ymax");
+  }
+}
+
+LinearizedFreeSurface::LinearizedFreeSurface(const Mesh& mesh, int patch_index,
+                                             LinearizedFreeSurfaceOptions options)
+    : Mixed<double>(0.0, 0.0, 1.0),
+      mesh_(mesh),
+      patch_index_(patch_index),
+      options_(std::move(options)),
+      surface_(mesh, patch_index) {
+  options_.Validate();
+  const int n = surface_.size();
+  eta_.assign(n, 0.0);
+  eta_star_.assign(n, 0.0);
+  dt_eff_.assign(n, 0.0);
+  ref_value().assign(n, 0.0);
+  ref_gradient().assign(n, 0.0);
+  fraction().assign(n, 1.0);
+
+  extrapolate_rim_.assign(surface_.edges().size(), 0);
+  for (const std::string& name : options_.waterline_patches) {
+    const int q = mesh.FindPatch(name);
+    if (q < 0 || q == patch_index) {
+      throw ConfigError(fmt::format("waterline patch '{}' is not another patch of the mesh {}",
+                                    name, mesh.source()));
+    }
+    for (std::size_t e = 0; e < surface_.edges().size(); ++e) {
+      if (surface_.edges()[e].rim_patch == q) extrapolate_rim_[e] = 1;
+    }
+  }
+
+  mu_.assign(n, 0.0);
+  const auto& beach = options_.beach;
+  if (beach.width > 0.0) {
+    const double U = beach.reference_speed;
+    const double width = beach.width * 2.0 * std::numbers::pi * U * U / options_.g;
+    const double mu_max = beach.strength * options_.g / U;
+    for (int i = 0; i < n; ++i) {
+      const Vector3& x = surface_.centres()[i];
+      double d = std::numeric_limits<double>::max();
+      for (auto side : beach.sides) {
+        switch (side) {
+          case LinearizedFreeSurfaceOptions::Beach::Side::kXMin:
+            d = std::min(d, x.x() - surface_.min().x());
+            break;
+          case LinearizedFreeSurfaceOptions::Beach::Side::kXMax:
+            d = std::min(d, surface_.max().x() - x.x());
+            break;
+          case LinearizedFreeSurfaceOptions::Beach::Side::kYMin:
+            d = std::min(d, x.y() - surface_.min().y());
+            break;
+          case LinearizedFreeSurfaceOptions::Beach::Side::kYMax:
+            d = std::min(d, surface_.max().y() - x.y());
+            break;
+        }
+      }
+      const double s = std::clamp(1.0 - d / width, 0.0, 1.0);
+      mu_[i] = mu_max * s * s * (3.0 - 2.0 * s);
+    }
+  }
+}
+
+double LinearizedFreeSurface::SurfacePressure(int i, double time) const {
+  return options_.surface_pressure ? options_.surface_pressure(surface_.centres()[i], time) : 0.0;
+}
+
+void LinearizedFreeSurface::AdvanceTime(double time) {
+  if (!started_) {
+    started_ = true;
+    time_ = time;
+    return;
+  }
+  if (time > time_) {
+    // A new time step: the converged elevation becomes eta^n.
+    if (eta_old_.size() < 2) eta_old_.emplace_back();
+    for (std::size_t l = eta_old_.size() - 1; l > 0; --l) eta_old_[l].swap(eta_old_[l - 1]);
+    eta_old_[0] = eta_;
+    time_ = time;
+    armed_ = false;
+    // A moving mesh is placed at the new time before its conditions update;
+    // the patch moves rigidly in the plane, so only its geometry changes (the
+    // beach, computed once, moves with the mesh).
+    surface_.UpdateGeometry(mesh_);
+  }
+}
+
+void LinearizedFreeSurface::Update(const BcContext& ctx, std::span<const double> cell_values) {
+  KELVIN_CHECK(&ctx.patch == &mesh_.patches()[patch_index_],
+               "free surface updated on its own patch");
+  AdvanceTime(ctx.time);
+  // Between pressure solves the condition is the plain dynamic condition;
+  // during one it keeps the Robin coefficients the pressure equation used,
+  // so the flux computed from them is the one eta is updated from.
+  if (!armed_) {
+    for (int i = 0; i < surface_.size(); ++i) {
+      fraction()[i] = 1.0;
+      ref_value()[i] = options_.g * eta_[i] + SurfacePressure(i, ctx.time);
+    }
+  }
+  Mixed<double>::Update(ctx, cell_values);
+}
+
+void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
+                                                 const PressureCoupling& coupling) {
+  AdvanceTime(ctx.time);
+  KELVIN_CHECK(coupling.dt > 0.0, "positive time step");
+  const int n = surface_.size();
+  const double t = ctx.time;
+  const double dt = coupling.dt;
+  const bool bdf2 = coupling.backward && eta_old_.size() >= 2;
+  const double a_t = bdf2 ? 1.5 : 1.0;
+  const std::vector<double>& eta0 = eta_old_.empty() ? eta_ : eta_old_[0];
+
+  // eta_star_ first collects the known part per unit time: the old
+  // levels ...
+  std::vector<double>& known = eta_star_;
+  std::vector<double> diag(n);
+  for (int i = 0; i < n; ++i) {
+    known[i] = bdf2 ? (2.0 * eta0[i] - 0.5 * eta_old_[1][i]) / dt : eta0[i] / dt;
+    diag[i] = a_t / dt + mu_[i];
+  }
+  // ... and the advection relative to the mesh, c = -u_b, in conservative
+  // form on the edges (flux q_e = c . n_e |e| out of edge.face).
+  if (options_.mesh_velocity) {
+    const auto& edges = surface_.edges();
+    edge_flux_.resize(edges.size());
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      edge_flux_[e] = -options_.mesh_velocity(edges[e].centre, t).dot(edges[e].normal);
+    }
+    using Advection = LinearizedFreeSurfaceOptions::Advection;
+    const bool second_order = options_.advection != Advection::kUpwind;
+    const bool quick = options_.advection == Advection::kQuick;
+    if (second_order) surface_.Gradient(eta_, grad_);
+    auto area = [&](int i) { return surface_.areas()[i]; };
+    // High-order correction eta_e - eta_up on edge e from the upwind face u
+    // (lagged iterate), or 0 (first order) where u has no gradient or the
+    // velocity at u points the other way across the edge. Linear upwind:
+    // eta_u + grad_u . (x_e - x_u). QUICK: the mean of that and the linear
+    // interpolation between u and the downwind face d (d < 0 on the rim:
+    // linear upwind).
+    auto correction = [&](std::size_t e, int u, int d, double q_out_of_u) {
+      if (!second_order || !surface_.valid_gradient(u)) return 0.0;
+      const double q_at_u = -options_.mesh_velocity(surface_.centres()[u], t).dot(edges[e].normal);
+      if (q_at_u * q_out_of_u <= 0.0) return 0.0;
+      const double lud = grad_[u].dot(edges[e].centre - surface_.centres()[u]);
+      if (!quick || d < 0) return lud;
+      const double to_u = (edges[e].centre - surface_.centres()[u]).norm();
+      const double to_d = (surface_.centres()[d] - edges[e].centre).norm();
+      const double linear = to_u / (to_u + to_d) * (eta_[d] - eta_[u]);
+      return 0.5 * (lud + linear);
+    };
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const auto& edge = edges[e];
+      const double q = edge_flux_[e];
+      const int a = edge.face;
+      if (edge.neighbour >= 0) {
+        const int b = edge.neighbour;
+        const int up = q >= 0.0 ? a : b;
+        const int down = q >= 0.0 ? b : a;
+        const double qa = std::abs(q);
+        // Implicit upwind outflow of `up`; `down` receives it from the lagged
+        // iterate.
+        diag[up] += qa / area(up);
+        known[down] += qa * eta_[up] / area(down);
+        const double dc = qa * correction(e, up, down, qa);
+        known[up] -= dc / area(up);
+        known[down] += dc / area(down);
+      } else if (q >= 0.0) {
+        diag[a] += q / area(a);
+        known[a] -= q * correction(e, a, -1, q) / area(a);
+      } else if (extrapolate_rim_[e]) {
+        // Waterline inflow: the pattern leaves the hull with the elevation of
+        // the face (zero gradient), implicit.
+        diag[a] += q / area(a);
+      }
+      // Other inflow rim edges bring undisturbed water: eta_e = 0.
+    }
+  }
+
+  if (options_.kinematic_courant > 0.0) {
+    // Local pseudo-time: where the advection rate a_ff exceeds
+    // kinematic_courant / dt, the time term becomes a_ff / kinematic_courant
+    // (eta - eta^n), so that the lagged upstream coupling contracts by
+    // C / (1 + C) per corrector. A steady state does not depend on it.
+    for (int i = 0; i < n; ++i) {
+      const double rate = (diag[i] - a_t / dt - mu_[i]) / options_.kinematic_courant;
+      if (rate <= a_t / dt) continue;
+      known[i] +=
+          rate * eta0[i] - (bdf2 ? (2.0 * eta0[i] - 0.5 * eta_old_[1][i]) / dt : eta0[i] / dt);
+      diag[i] += rate - a_t / dt;
+    }
+  }
+  const Patch& patch = mesh_.patches()[patch_index_];
+  for (int i = 0; i < n; ++i) {
+    const int f = patch.start + i;
+    const double mag = mesh_.face_area_magnitudes()[f];
+    KELVIN_CHECK(diag[i] > 0.0, "positive free-surface diagonal");
+    dt_eff_[i] = 1.0 / diag[i];
+    eta_star_[i] = dt_eff_[i] * known[i];
+    const double D = coupling.rAUf[f] * mag * DeltaCoeff(mesh_, f);
+    const double c = options_.g * dt_eff_[i] * D / mag;
+    fraction()[i] = 1.0 / (1.0 + c);
+    ref_value()[i] = options_.g * (eta_star_[i] + dt_eff_[i] * coupling.flux_HbyA[f] / mag) +
+                     SurfacePressure(i, t);
+  }
+  armed_ = true;
+  Mixed<double>::Update(ctx, {});
+}
+
+void LinearizedFreeSurface::CorrectAfterFlux(const BcContext&, std::span<const double> face_flux) {
+  if (!armed_) return;
+  const Patch& patch = mesh_.patches()[patch_index_];
+  for (int i = 0; i < surface_.size(); ++i) {
+    const int f = patch.start + i;
+    eta_[i] = eta_star_[i] + dt_eff_[i] * face_flux[f] / mesh_.face_area_magnitudes()[f];
+  }
+  armed_ = false;
+}
+
+std::vector<std::pair<std::string, std::vector<double>>> LinearizedFreeSurface::FaceFields() const {
+  return {{"eta", eta_}, {"beach_damping", mu_}};
+}
+
+std::vector<double> LinearizedFreeSurface::State() const {
+  const std::size_t n = eta_.size();
+  std::vector<double> s = {time_, started_ ? 1.0 : 0.0, static_cast<double>(eta_old_.size())};
+  s.insert(s.end(), eta_.begin(), eta_.end());
+  for (std::size_t l = 0; l < 2; ++l) {
+    if (l < eta_old_.size()) {
+      s.insert(s.end(), eta_old_[l].begin(), eta_old_[l].end());
+    } else {
+      s.insert(s.end(), n, 0.0);
+    }
+  }
+  return s;
+}
+
+void LinearizedFreeSurface::SetState(std::span<const double> s) {
+  const std::size_t n = eta_.size();
+  if (s.size() != 3 + 3 * n) {
+    throw DataFileError(
+        fmt::format("free-surface state of patch '{}' has {} values; expected {} for {} faces",
+                    surface_.name(), s.size(), 3 + 3 * n, n));
+  }
+  time_ = s[0];
+  started_ = s[1] != 0.0;
+  const auto levels = static_cast<std::size_t>(s[2]);
+  eta_.assign(s.begin() + 3, s.begin() + 3 + static_cast<std::ptrdiff_t>(n));
+  eta_old_.clear();
+  for (std::size_t l = 0; l < std::min<std::size_t>(levels, 2); ++l) {
+    const auto first = s.begin() + static_cast<std::ptrdiff_t>(3 + (l + 1) * n);
+    eta_old_.emplace_back(first, first + static_cast<std::ptrdiff_t>(n));
+  }
+  armed_ = false;
+}
+
+void LinearizedFreeSurface::SetEta(std::span<const double> eta) {
+  KELVIN_CHECK(eta.size() == eta_.size(), "one elevation per patch face");
+  eta_.assign(eta.begin(), eta.end());
+}
+
+double LinearizedFreeSurface::Volume() const {
+  double v = 0.0;
+  for (int i = 0; i < surface_.size(); ++i) v += eta_[i] * surface_.areas()[i];
+  return v;
+}
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,161 @@
+// The linearized free-surface condition on the calm-water plane z = 0
+// (docs/lfs-formulation.md section 3). It is the pressure condition of the
+// `freeSurface` patch and owns the wave elevation eta (m) of each face.
+//
+// Dynamic condition:   p_f = g eta_f + p_a,f   (p kinematic, p_a an optional
+//                      applied surface pressure, e.g. a moving pressure patch)
+// Kinematic condition, on the 2D face mesh of the patch, relative to the mesh:
+//   d eta/dt + div_h(c eta) + mu eta = w,   c = -u_b,   w = F_f / |S_f|
+// where u_b is the velocity of the mesh through the still water (div_h c = 0
+// for rigid in-plane motion, so the conservative and the advective forms
+// agree) and mu >= 0 the damping of the beach.
+//
+// Time discretization (Euler or BDF2, following the solver) with implicit
+// first-order upwind advection; the neighbour values and the second-order
+// (linear-upwind) deferred correction are taken from the latest iterate, so
+// each face reads
+//   eta_f = eta*_f + dt'_f F_f / |S_f|,   1/dt'_f = a_t/dt + mu_f + a_ff
+// with a_t = 1 (Euler) or 3/2 (BDF2), a_ff the upwind outflow coefficient and
+// eta* all the known parts. The lagged parts converge with the PIMPLE
+// correctors and vanish from a converged steady state, which therefore solves
+// the fully implicit discrete problem.
+//
+// Implicit gravity-wave coupling: before each pressure solve the predicted
+// boundary flux F_f = F_HbyA,f - D_f (p_f - p_P), D_f = rAUf |S_f| / (n.d),
+// is substituted into the dynamic condition, which gives the Robin condition
+//   p_f = w_f p_ref,f + (1 - w_f) p_P,   w_f = 1 / (1 + g dt'_f D_f / |S_f|),
+//   p_ref,f = g (eta*_f + dt'_f F_HbyA,f / |S_f|) + p_a,f.
+// It adds a positive diagonal term to the pressure matrix (symmetric positive
+// definite as before) and removes the explicit time-step limit of gravity
+// waves. After the pressure solve eta is updated from the corrected flux with
+// the same formula, so sum_f eta_f |S_f| changes by exactly the volume that
+// crossed the patch.
+//
+// Outside a pressure solve (momentum predictor, output) the condition is the
+// Dirichlet value p_f = g eta_f + p_a,f.
+//
+// Large Courant numbers (measured on the Kelvin pressure-patch case, 16
+// faces per wavelength). Without advection (standing wave) the coupling is
+// stable at any step. With advection the lagged upstream neighbour is one
+// more fixed point for the PIMPLE correctors: it contracts by C / (1 + C)
+// per corrector at the patch Courant number C. Unrelaxed PIMPLE reaches the
+// steady pattern at Courant 5 and 20 and diverges at 50 (with or without
+// the cap below). Relaxed PIMPLE (U 0.7, p 0.3, 4 outer correctors) at
+// Courant 100 (120 at the largest cell) with `kinematic_courant` = 2 reaches
+// the same steady pattern as Courant 5 (wavelength within 0.01%), in about
+// twice the steps; without the cap it stalls or diverges. Solving the
+// upstream coupling inside the pressure equation would need extra face
+// unknowns; solving it by an upwind sweep with lagged fluxes amplifies flux
+// changes by the Courant number and diverges.
+
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cfd/bc/boundary_condition.h"
+#include "cfd/freesurface/patch_surface.h"
+
+namespace kelvin::cfd {
+
+struct LinearizedFreeSurfaceOptions {
+  double g = 9.81;  // gravitational acceleration, m/s^2
+  // Velocity u_b (m/s, mesh coordinates) of the mesh point x through the
+  // still water at time t. The pattern moves with -u_b relative to the mesh;
+  // a ship-fixed mesh in a uniform inflow U has u_b = -U. Empty: at rest.
+  std::function<Vector3(const Vector3& x, double t)> mesh_velocity;
+  // Applied kinematic surface pressure p_a (m^2/s^2), e.g. a moving pressure
+  // patch. Empty: none.
+  std::function<double(const Vector3& x, double t)> surface_pressure;
+  // Face value of eta on the edges of the 2D face mesh: first-order upwind;
+  // linear upwind (upwind value plus the least-squares gradient of the
+  // upwind face); or QUICK, the mean of linear upwind and linear
+  // interpolation (third order on uniform grids: phase error O(k^4 dx^4)
+  // against (k dx)^2 / 12 for linear upwind, which matters for the
+  // wavelength of the pattern). The high-order parts fall back to first
+  // order where the advection direction reverses.
+  enum class Advection { kUpwind, kLinearUpwind, kQuick };
+  Advection advection = Advection::kLinearUpwind;
+  // Patches across which eta is extrapolated at inflow edges (the hull
+  // waterline, where the pattern leaves the hull). On every other inflow
+  // edge of the patch rim eta = 0 (undisturbed water comes in).
+  std::vector<std::string> waterline_patches;
+
+  // Steady (pseudo-transient) runs only: caps the time step of the
+  // kinematic condition per face at kinematic_courant times the advection
+  // time across the face (local time stepping). It leaves a converged steady
+  // state unchanged but makes transients non-physical. 0 = off.
+  double kinematic_courant = 0.0;
+
+  // Damping beach: mu(x) = mu_max s(1 - d/W), with d the distance to the
+  // nearest chosen side of the patch's bounding box, W = width * lambda,
+  // lambda = 2 pi U^2 / g the transverse wavelength at the reference speed
+  // U, mu_max = strength * g / U (the encounter frequency of the transverse
+  // waves) and s the smooth ramp 3 x^2 - 2 x^3.
+  struct Beach {
+    enum class Side { kXMin, kXMax, kYMin, kYMax };
+    double width = 0.0;            // in transverse wavelengths; 0 = no beach
+    double strength = 1.0;         // mu_max U / g
+    double reference_speed = 0.0;  // U, m/s
+    std::vector<Side> sides;
+  };
+  Beach beach;
+
+  // Throws ConfigError naming the option and the value.
+  void Validate() const;
+};
+
+class LinearizedFreeSurface : public Mixed<double> {
+ public:
+  // Throws ConfigError if the patch is not a manifold face mesh in z = 0
+  // with outward normal +z, or if the options are invalid.
+  LinearizedFreeSurface(const Mesh& mesh, int patch_index, LinearizedFreeSurfaceOptions options);
+
+  void Update(const BcContext& ctx, std::span<const double> cell_values) override;
+  void PreparePressureSolve(const BcContext& ctx, const PressureCoupling& coupling) override;
+  void CorrectAfterFlux(const BcContext& ctx, std::span<const double> face_flux) override;
+  std::string type() const override { return "linearizedFreeSurface"; }
+  std::vector<std::pair<std::string, std::vector<double>>> FaceFields() const override;
+  // [time, old levels, eta, eta^n, eta^{n-1}] (old levels padded with zeros).
+  std::vector<double> State() const override;
+  void SetState(std::span<const double> state) override;
+
+  // Wave elevation per patch face (m), patch face order.
+  const std::vector<double>& eta() const { return eta_; }
+  // Sets eta (initial condition); the next time step takes it as eta^n.
+  void SetEta(std::span<const double> eta);
+  // Volume stored in the elevation, sum_f eta_f |S_f| (m^3).
+  double Volume() const;
+  // Beach damping per face (1/s).
+  const std::vector<double>& damping() const { return mu_; }
+  const PatchSurface& surface() const { return surface_; }
+  const LinearizedFreeSurfaceOptions& options() const { return options_; }
+
+ private:
+  // Starts a new time level when ctx.time moves on.
+  void AdvanceTime(double time);
+  // Face value of the applied pressure at time t.
+  double SurfacePressure(int i, double time) const;
+
+  const Mesh& mesh_;
+  int patch_index_;
+  LinearizedFreeSurfaceOptions options_;
+  PatchSurface surface_;
+  std::vector<char> extrapolate_rim_;  // per edge: inflow extrapolates eta (waterline)
+  std::vector<double> mu_;
+  std::vector<double> eta_;
+  std::vector<std::vector<double>> eta_old_;  // eta^n, eta^{n-1}
+  double time_ = 0.0;
+  bool started_ = false;
+  // Set by PreparePressureSolve, consumed by CorrectAfterFlux.
+  bool armed_ = false;
+  std::vector<double> eta_star_;
+  std::vector<double> dt_eff_;
+  // Scratch.
+  std::vector<Vector3> grad_;
+  std::vector<double> edge_flux_;
+};
+
+}  // namespace kelvin::cfd
