@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <array>
 #include <chrono>
 #include <ctime>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "cfd/mesh/box_mesh.h"
 #include "cfd/mesh/poly_mesh_reader.h"
 #include "cfd/motion/ship_forces.h"
+#include "cfd/turbulence/k_omega_sst.h"
 #include "data/report/progress.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
@@ -284,7 +286,7 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, c
 }  // namespace
 
 Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverrides& overrides) {
-  root.ExpectKeys({"mesh", "physics", "schemes", "solution", "time", "boundary", "output", "motion"});
+  root.ExpectKeys({"mesh", "physics", "schemes", "solution", "time", "boundary", "output", "motion", "turbulence"});
   Case c;
   c.mesh = LoadMesh(root["mesh"], case_dir);
   const Mesh& mesh = *c.mesh;
@@ -373,7 +375,9 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   b.ExpectKeys(patch_names);
   std::vector<std::unique_ptr<BoundaryCondition<Vector3>>> u_bcs;
   std::vector<std::unique_ptr<BoundaryCondition<double>>> p_bcs;
+  std::vector<std::string> u_types;  // as written in the case (noSlip and fixedValue differ for turbulence)
   for (const Patch& p : mesh.patches()) {
+    u_types.push_back(b.Has(p.name) ? b[p.name]["U"].Get<std::string>("type") : "empty");
     if (!b.Has(p.name)) {
       if (p.kind == PatchKind::kEmpty) {
         u_bcs.push_back(std::make_unique<Empty<Vector3>>());
@@ -423,6 +427,54 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
     root["solution"].Fail(e.what());
   }
   if (c.motion) c.motion->Attach(*c.solver);
+  if (root.Has("turbulence")) {
+    const ConfigNode tn = root["turbulence"];
+    tn.ExpectKeys({"model", "inflow", "convection", "relax"});
+    const std::string model = tn.Get<std::string>("model");
+    if (model != "kOmegaSST" && model != "laminar") tn["model"].Fail("kOmegaSST or laminar");
+    if (model == "kOmegaSST") {
+      KOmegaSstOptions so;
+      if (tn.Has("inflow")) {
+        const ConfigNode in = tn["inflow"];
+        in.ExpectKeys({"intensity", "viscosity_ratio", "reference_speed"});
+        so.inflow.intensity = in.Get<double>("intensity", so.inflow.intensity);
+        so.inflow.viscosity_ratio = in.Get<double>("viscosity_ratio", so.inflow.viscosity_ratio);
+        so.inflow.reference_speed = in.GetPositive("reference_speed");
+      } else {
+        tn.Fail("an inflow section with reference_speed (m/s), and optionally intensity and viscosity_ratio");
+      }
+      so.convection = GetEnum(tn, "convection", ConvectionScheme::kUpwind,
+                             {{"upwind", ConvectionScheme::kUpwind}, {"limited", ConvectionScheme::kLimited}});
+      so.relax = tn.Get<double>("relax", 1.0);
+      try {
+        so.Validate();
+      } catch (const ConfigError& e) {
+        tn.Fail(e.what());
+      }
+      // What each patch is to k and omega follows from its velocity
+      // condition: prescribed inflow, walls, outflow, zero-gradient planes.
+      std::vector<TurbulencePatchRole> roles;
+      for (int k = 0; k < static_cast<int>(mesh.patches().size()); ++k) {
+        const std::string& u_type = u_types[k];
+        const std::string p_type = c.solver->p().bc(k).type();
+        if (u_type == "empty") {
+          roles.push_back(TurbulencePatchRole::kEmpty);
+        } else if (u_type == "fixedValue") {
+          roles.push_back(TurbulencePatchRole::kInflow);
+        } else if (u_type == "movingWall" || u_type == "movingWallVelocity" || u_type == "noSlip") {
+          roles.push_back(TurbulencePatchRole::kWall);
+        } else if (u_type == "slip" || p_type == "linearizedFreeSurface") {
+          roles.push_back(TurbulencePatchRole::kSymmetry);
+        } else {
+          roles.push_back(TurbulencePatchRole::kOutflow);
+        }
+      }
+      bool any_wall = false;
+      for (TurbulencePatchRole r : roles) any_wall = any_wall || r == TurbulencePatchRole::kWall;
+      if (!any_wall) tn["model"].Fail("a case with at least one wall patch (U: noSlip or movingWall) for kOmegaSST");
+      c.solver->SetTurbulence(std::make_unique<KOmegaSst>(mesh, physics.nu, so, roles));
+    }
+  }
   return c;
 }
 
@@ -439,7 +491,8 @@ std::pair<Vector3, Vector3> PatchForce(const PimpleSolver& s, int patch_index, d
     const int f = patch.start + i;
     fp += rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
     const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) + bc.gradient_boundary()[i];
-    fv -= rho * nu * sn_grad * mesh.face_area_magnitudes()[f];
+    // With a turbulence model the face carries nu + nu_t,wall (wall functions).
+    fv -= rho * (s.turbulence() ? s.FaceViscosity(f) : nu) * sn_grad * mesh.face_area_magnitudes()[f];
   }
   return {fp, fv};
 }
@@ -472,7 +525,13 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       p.values.push_back(solver.p()[i]);
     }
     const fs::path file = c.output_directory / fmt::format("fields_{:06d}.vtu", solver.step());
-    WriteVtu(file, mesh, {u, p});
+    std::vector<VtuCellData> cell_data = {u, p};
+    if (solver.turbulence()) {
+      for (TurbulenceOutput& t : solver.turbulence()->CellOutputs()) {
+        cell_data.push_back({t.name, t.components, std::move(t.values)});
+      }
+    }
+    WriteVtu(file, mesh, cell_data);
     pvd.Add(solver.time(), file);
     // Patches whose conditions have their own unknowns (eta): a surface file
     // with those, p and U per face, in a series of their own.
@@ -495,6 +554,10 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       series->second.Add(solver.time(), surface_file);
     }
   };
+  // Turbulence per step: residuals of k and omega, cells lifted by the bound
+  // step, and y+ (min, mean, max) on each wall patch.
+  std::vector<std::array<double, 4>> turbulence_rows;
+  std::vector<std::vector<WallPatchStats>> wall_rows;
   constexpr std::size_t kForceColumn = 9;
   auto write_history = [&]() {
     data::H5Writer w(c.output_directory / "history.h5");
@@ -525,6 +588,29 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       w.WriteArray("forces/" + c.force_patches[k] + "/viscous", fv, {rows, 3}, "N", "viscous force on the patch");
     }
     if (!captive_rows.empty()) WriteCaptiveHistory(w, captive_rows);
+    if (!turbulence_rows.empty()) {
+      const std::size_t n = turbulence_rows.size();
+      const char* names[4] = {"turbulence/residuals/k", "turbulence/residuals/omega", "turbulence/bounded/k",
+                              "turbulence/bounded/omega"};
+      const char* what[4] = {"initial normalized residual of k", "initial normalized residual of omega",
+                             "cells the bound step lifted to the floor (k)",
+                             "cells the bound step lifted to the floor (omega)"};
+      for (int j = 0; j < 4; ++j) {
+        std::vector<double> v(n);
+        for (std::size_t r = 0; r < n; ++r) v[r] = turbulence_rows[r][j];
+        w.WriteArray(names[j], v, {n}, "1", what[j]);
+      }
+      for (std::size_t k = 0; k < wall_rows.front().size(); ++k) {
+        std::vector<double> v(n * 3);
+        for (std::size_t r = 0; r < n; ++r) {
+          v[3 * r] = wall_rows[r][k].y_plus_min;
+          v[3 * r + 1] = wall_rows[r][k].y_plus_mean;
+          v[3 * r + 2] = wall_rows[r][k].y_plus_max;
+        }
+        w.WriteArray("turbulence/y_plus/" + wall_rows.front()[k].patch, v, {n, 3}, "1",
+                     "first-cell y+ on the wall patch: min, area-weighted mean, max");
+      }
+    }
     w.Commit();
   };
 
@@ -574,6 +660,16 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       WriteCheckpoint(summary.last_checkpoint, solver);
       write_history();
     }
+    if (const TurbulenceModel* t = solver.turbulence()) {
+      const TurbulenceSummary& ts = solver.turbulence_summary();
+      turbulence_rows.push_back({ts.initial_residual_k, ts.initial_residual_omega, double(ts.bounded_k),
+                                 double(ts.bounded_omega)});
+      wall_rows.push_back(t->WallStats());
+      if (ts.bounded_k + ts.bounded_omega > 0) {
+        spdlog::warn("step {}: the bound step lifted {} k and {} omega cells to the floor", s.step, ts.bounded_k,
+                     ts.bounded_omega);
+      }
+    }
     progress.Update(i + 1, fmt::format("step {} t={:.4g} Co={:.3g} U={:.2e} p={:.2e}", s.step, s.time,
                                        s.courant_max, s.initial_residual_U, s.initial_residual_p));
   }
@@ -584,6 +680,12 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   if (summary.status == RunSummary::Status::kCompleted) {
     summary.message = fmt::format("completed {} steps to t = {:.6g} s; results in {}", summary.steps, summary.time,
                                   summary.output_directory.string());
+    if (!wall_rows.empty()) {
+      for (const WallPatchStats& w : wall_rows.back()) {
+        summary.message += fmt::format("\n  y+ on {}: min {:.3g}, mean {:.3g}, max {:.3g}", w.patch, w.y_plus_min,
+                                       w.y_plus_mean, w.y_plus_max);
+      }
+    }
   }
   return summary;
 }

@@ -19,7 +19,9 @@ HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, 
       const Vector3 dp = rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
       const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) +
                               bc.gradient_boundary()[i];
-      const Vector3 dv = -rho * nu * sn_grad * mesh.face_area_magnitudes()[f];
+      // With a turbulence model the face carries nu + nu_t,wall (wall functions).
+      const double nu_f = s.turbulence() ? s.FaceViscosity(f) : nu;
+      const Vector3 dv = -rho * nu_f * sn_grad * mesh.face_area_magnitudes()[f];
       const Vector3 arm = mesh.face_centres()[f] - centre;
       fp += dp;
       fv += dv;

@@ -211,7 +211,13 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
   sst.inflow = run.inflow;
   sst.inflow.reference_speed = U;
   sst.relax = run.turbulence_relax;
-  if (!run.laminar) solver.SetTurbulence(std::make_unique<KOmegaSst>(mesh, nu, sst, roles));
+  if (!run.laminar) {
+    auto model = std::make_unique<KOmegaSst>(mesh, nu, sst, roles);
+    if (run.initial_viscosity_ratio > 0.0) {
+      for (double& w : model->omega().values()) w = sst.inflow.k(nu) / (run.initial_viscosity_ratio * nu);
+    }
+    solver.SetTurbulence(std::move(model));
+  }
 
   const int plate = mesh.FindPatch("plate");
   const Patch& pp = mesh.patches()[plate];

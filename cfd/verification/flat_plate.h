@@ -54,6 +54,12 @@ struct FlatPlateRunOptions {
   double relax_p = 0.3;
   int n_outer = 1;
   double turbulence_relax = 1.0;
+  // Initial nu_t / nu in the whole domain (0: the inflow value). A turbulent
+  // start trips the boundary layer, as a stimulator does in a towing tank:
+  // SST at low free-stream turbulence otherwise keeps a laminar run-out whose
+  // length depends on the inflow values, and the friction lines describe
+  // fully turbulent plates.
+  double initial_viscosity_ratio = 0.0;
   // Laminar run on the same mesh (the cost baseline of the SST benchmark).
   bool laminar = false;
   bool progress = false;

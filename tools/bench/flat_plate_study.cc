@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   app.add_option("--max-steps", r.max_steps, "step limit")->check(CLI::PositiveNumber);
   app.add_option("--viscosity-ratio", r.inflow.viscosity_ratio, "inflow nu_t / nu")->check(CLI::PositiveNumber);
   app.add_option("--intensity", r.inflow.intensity, "inflow turbulence intensity")->check(CLI::Range(1e-6, 0.5));
+  app.add_option("--initial-viscosity-ratio", r.initial_viscosity_ratio, "initial nu_t / nu (turbulent start)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--laminar", r.laminar, "no turbulence model (cost baseline)");
   app.add_flag("--progress", r.progress, "log every 50 steps");
   app.add_flag("--profile", profile, "print the u+ profile at 0.8 L");
