@@ -142,7 +142,6 @@ class KOmegaSst : public TurbulenceModel {
   NonOrthGeometry geo_;
   Gradient grad_;
   SparseSystem system_;
-  std::unique_ptr<LinearSolver> solver_;
   double k_floor_ = 0.0, omega_floor_ = 0.0;
   bool initialized_ = false;
 };

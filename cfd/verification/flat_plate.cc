@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <memory>
 
 #include "cfd/mesh/mesh_builder.h"
@@ -259,16 +260,22 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
   for (int c = 0; c < mesh.n_cells(); ++c) area += mesh.cell_volumes()[c];
   r.h = std::sqrt(area / span / mesh.n_cells());
   std::vector<double> history;
+  r.dt = dt;
   const auto start = std::chrono::steady_clock::now();
-  for (int step = 0; step < run.max_steps; ++step) {
+  const int step_limit = run.fixed_steps > 0 ? run.fixed_steps : run.max_steps;
+  for (int step = 0; step < step_limit; ++step) {
+    const auto step_start = std::chrono::steady_clock::now();
+    const std::clock_t step_cpu_start = std::clock();
     const StepSummary s = solver.Step(dt);
     if (!s.finite) throw ModelError(fmt::format("flat plate Re_L = {:.3g}: diverged at step {}", o.reynolds, s.step));
     if (solver.turbulence()) {
       r.bounded_cells += solver.turbulence_summary().bounded_k + solver.turbulence_summary().bounded_omega;
     }
     history.push_back(friction());
+    r.step_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count());
+    r.step_cpu_seconds.push_back(static_cast<double>(std::clock() - step_cpu_start) / CLOCKS_PER_SEC);
     r.steps = step + 1;
-    if (static_cast<int>(history.size()) > run.min_flow_throughs * steps_per_flow) {
+    if (run.fixed_steps <= 0 && static_cast<int>(history.size()) > run.min_flow_throughs * steps_per_flow) {
       const double now = history.back();
       const double before = history[history.size() - 1 - steps_per_flow];
       r.C_F_change = std::abs(now - before) / std::abs(now);

@@ -63,6 +63,9 @@ struct FlatPlateRunOptions {
   // Laminar run on the same mesh (the cost baseline of the SST benchmark).
   bool laminar = false;
   bool progress = false;
+  // > 0: run exactly this many steps, without the convergence stop (cost
+  // benchmarks); max_steps is then ignored.
+  int fixed_steps = 0;
 };
 
 struct FlatPlateResult {
@@ -73,6 +76,9 @@ struct FlatPlateResult {
   int cells = 0;
   double h = 0.0;                   // representative 2D cell size sqrt(A / N) (m)
   double seconds_per_step = 0.0;    // wall time
+  double dt = 0.0;                  // pseudo time step (s)
+  std::vector<double> step_seconds; // wall time of each step
+  std::vector<double> step_cpu_seconds;  // process CPU time of each step
   WallPatchStats wall;              // y+ on the plate
   int bounded_cells = 0;            // cells the bound step touched over the run
   std::vector<double> x, cf;        // local skin friction along the plate

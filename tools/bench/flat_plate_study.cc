@@ -4,11 +4,20 @@
 // comparison of the SST benchmark (seconds per step, laminar vs SST).
 //
 //   flat_plate_study --re 1e7 --y-plus 50 --cells-y 60 --cells-x 120 [--laminar] [--profile] [--cf]
+//                    [--steps N [--timing-skip K]] [--write-poly-mesh DIR]
+//
+// --steps N runs exactly N steps (no convergence stop) and prints a
+// "timing:" line with the mean wall time of the steps after the first K;
+// --write-poly-mesh DIR writes the mesh as DIR/constant/polyMesh (for the
+// OpenFOAM side of tools/bench/sst_cost_bench.py) before the run.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "cfd/grid/mesh_writer.h"
 #include "cfd/verification/flat_plate.h"
 
 int main(int argc, char** argv) {
@@ -17,6 +26,8 @@ int main(int argc, char** argv) {
   FlatPlateOptions o;
   FlatPlateRunOptions r;
   bool profile = false, cf = false;
+  int timing_skip = 3;
+  std::string poly_mesh_dir;
   app.add_option("--re", o.reynolds, "plate Reynolds number U L / nu")->check(CLI::PositiveNumber);
   app.add_option("--y-plus", o.y_plus, "target first-cell-centre y+")->check(CLI::PositiveNumber);
   app.add_option("--cells-y", o.cells_y, "wall-normal cells")->check(CLI::Range(4, 100000));
@@ -29,12 +40,18 @@ int main(int argc, char** argv) {
   app.add_option("--intensity", r.inflow.intensity, "inflow turbulence intensity")->check(CLI::Range(1e-6, 0.5));
   app.add_option("--initial-viscosity-ratio", r.initial_viscosity_ratio, "initial nu_t / nu (turbulent start)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--steps", r.fixed_steps, "run exactly N steps, no convergence stop (benchmarks)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--timing-skip", timing_skip, "start-up steps excluded from the timing line (with --steps)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--write-poly-mesh", poly_mesh_dir, "write the mesh to DIR/constant/polyMesh before the run");
   app.add_flag("--laminar", r.laminar, "no turbulence model (cost baseline)");
   app.add_flag("--progress", r.progress, "log every 50 steps");
   app.add_flag("--profile", profile, "print the u+ profile at 0.8 L");
   app.add_flag("--cf", cf, "print local c_f along the plate");
   CLI11_PARSE(app, argc, argv);
   try {
+    if (!poly_mesh_dir.empty()) WritePolyMesh(MakeFlatPlateMesh(o), poly_mesh_dir);
     const FlatPlateResult res = RunFlatPlate(o, r);
     const double ittc = IttcFrictionLine(o.reynolds), sch = SchoenherrFrictionLine(o.reynolds);
     fmt::print(
@@ -43,6 +60,17 @@ int main(int argc, char** argv) {
         o.reynolds, o.y_plus, res.C_F, 100 * (res.C_F / ittc - 1), 100 * (res.C_F / sch - 1), res.converged, res.steps,
         res.C_F_change, res.cells, res.h, res.seconds_per_step, res.wall.y_plus_min, res.wall.y_plus_mean,
         res.wall.y_plus_max, res.bounded_cells);
+    if (r.fixed_steps > 0) {
+      const std::size_t skip = std::min<std::size_t>(timing_skip, res.step_seconds.size() - 1);
+      double wall = 0.0, cpu = 0.0;
+      for (std::size_t i = skip; i < res.step_seconds.size(); ++i) {
+        wall += res.step_seconds[i];
+        cpu += res.step_cpu_seconds[i];
+      }
+      const double n = static_cast<double>(res.step_seconds.size() - skip);
+      fmt::print("timing: {} cells, dt {:.9g} s, {} steps, first {} excluded, wall {:.6f} s/step, cpu {:.6f} s/step\n",
+                 res.cells, res.dt, res.steps, skip, wall / n, cpu / n);
+    }
     if (profile) {
       for (std::size_t i = 0; i < res.y_plus.size() && res.y_plus[i] < 3000; ++i) {
         fmt::print("  y+ {:9.2f} u+ {:7.3f} log law (B 5.0-5.2) {:7.3f}-{:7.3f}  nu_t/nu {:9.2f}\n", res.y_plus[i],
