@@ -209,7 +209,7 @@ double KOmegaSst::Solve(ScalarField& field, FvMatrix<double>& m, int& bounded, d
   if (r0_norm > 0.0) {
     Eigen::BiCGSTAB<CsrMatrix, Eigen::IncompleteLUT<double, int>> bicgstab;
     bicgstab.preconditioner().setFillfactor(1);
-    bicgstab.preconditioner().setDroptol(1e-4);
+    bicgstab.preconditioner().setDroptol(1e-2);
     bicgstab.setMaxIterations(opt_.solver.max_iterations);
     bicgstab.setTolerance(std::max(opt_.solver.relative_tolerance, opt_.solver.absolute_tolerance / r0_norm));
     bicgstab.compute(a);

@@ -248,7 +248,7 @@ pimpleFoam, so both run the same mesh. {args.steps} pseudo-time steps of dt = {d
 cell at L/2), each one PIMPLE outer iteration with 2 pressure correctors, implicit relaxation U 0.7, p 0.3; Euler,
 Gauss linear gradients, linear-upwind U, upwind k and omega, corrected Laplacian. Pressure: kelvin CG + BoomerAMG,
 pimpleFoam GAMG; relative tolerance 1e-4, 1e-6 in the final corrector. U, k, omega: BiCGStab, relative tolerance
-1e-6 (kelvin: Jacobi for U, ILU(0) for the k and omega corrections; pimpleFoam: DILU). Turbulence: kelvin's KOmegaSst (wall functions, correction-form k and
+1e-6 (kelvin: Jacobi for U, Eigen's threshold incomplete LU (IncompleteLUT, fill factor 1, drop tolerance 1e-2) for the k and omega corrections; pimpleFoam: DILU). Turbulence: kelvin's KOmegaSst (wall functions, correction-form k and
 omega solves), pimpleFoam kOmegaSST with nutkWallFunction / omegaWallFunction / kqRWallFunction on the plate; inflow
 I = {args.intensity:g}, nu_t/nu = {args.viscosity_ratio:g} in both. OpenFOAM {fs['build']}.
 The first {args.skip} steps are excluded; times per outer iteration are wall-clock (kelvin: per-step clock in
