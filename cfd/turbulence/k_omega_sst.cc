@@ -47,8 +47,7 @@ double Blend(double F1, double inner, double outer) { return F1 * inner + (1.0 -
 
 }  // namespace
 
-KOmegaSst::KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std::vector<TurbulencePatchRole> roles,
-                     const std::vector<std::string>&)
+KOmegaSst::KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std::vector<TurbulencePatchRole> roles)
     : mesh_(mesh),
       nu_(nu),
       opt_(std::move(options)),
@@ -115,7 +114,6 @@ KOmegaSst::KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std:
   }
   wall_cell_omega_.assign(wall_cells_.size(), w_in);
   wall_cell_production_.assign(wall_cells_.size(), -1.0);
-  opt_.solver.type = LinearSolverOptions::Type::kBiCgStabJacobi;
 }
 
 void KOmegaSst::Initialize(const VectorField& U, std::span<const double> flux) {

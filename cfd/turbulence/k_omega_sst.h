@@ -85,6 +85,8 @@ struct KOmegaSstOptions {
   // (I = 1%, nu_t/nu = 1-10) the ambient omega exceeds the outer
   // boundary-layer omega of model-scale plates and damps it.
   bool sustain = false;
+  // Tolerances and iteration limit of the k and omega solves (BiCGStab
+  // with an incomplete-LU preconditioner; the type field is not used).
   LinearSolverOptions solver;
   void Validate() const;
 };
@@ -92,8 +94,7 @@ struct KOmegaSstOptions {
 class KOmegaSst : public TurbulenceModel {
  public:
   // `roles` has one entry per mesh patch. nu in m^2/s.
-  KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std::vector<TurbulencePatchRole> roles,
-            const std::vector<std::string>& patch_names_for_errors = {});
+  KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std::vector<TurbulencePatchRole> roles);
 
   std::string name() const override { return "kOmegaSST"; }
   void Initialize(const VectorField& U, std::span<const double> flux) override;
