@@ -2,6 +2,7 @@
 // chosen by a callback, and the Ghia et al. (1982) reference table.
 #pragma once
 
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -9,8 +10,12 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "cfd/field/field.h"
+#include "cfd/io/case_runner.h"
 #include "cfd/solver/pimple_solver.h"
+#include "data/schema/errors.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd::testing {
@@ -21,6 +26,28 @@ std::unique_ptr<CellField<T>> MakeField(const std::string& name, const Mesh& mes
   std::vector<std::unique_ptr<BoundaryCondition<T>>> bcs;
   for (const Patch& p : mesh.patches()) bcs.push_back(bc(p));
   return std::make_unique<CellField<T>>(name, mesh, std::move(bcs));
+}
+
+// Writes a case file `case.yaml` into dir and returns its path.
+inline std::filesystem::path WriteCase(const std::filesystem::path& dir, const std::string& text) {
+  const std::filesystem::path p = dir / "case.yaml";
+  std::ofstream(p) << text;
+  return p;
+}
+
+// Running the case text fails with one ConfigError naming the case file and
+// containing `part`.
+inline void ExpectCaseConfigError(const std::string& text, const std::string& part) {
+  kelvin::testing::ScopedTempDir tmp;
+  RunOptions o;
+  o.progress = false;
+  try {
+    RunCase(WriteCase(tmp.path(), text), o);
+    ADD_FAILURE() << "expected a ConfigError with '" << part << "'";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("case.yaml"), std::string::npos) << e.what();
+  }
 }
 
 struct GhiaPoint {

@@ -11,12 +11,15 @@
 #include "cfd/io/case_runner.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
+#include "tests/cfd/cfd_test_support.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::ExpectCaseConfigError;
+using testing::WriteCase;
 
 // A coarse version of data/cases/kelvin_pressure_patch.yaml.
 const char* kCase = R"(mesh:
@@ -51,30 +54,11 @@ std::string CaseText(double end = 1.0) {
   return s;
 }
 
-fs::path Write(const fs::path& dir, const std::string& text) {
-  const fs::path p = dir / "case.yaml";
-  std::ofstream(p) << text;
-  return p;
-}
-
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const std::size_t at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   if (at != std::string::npos) text.replace(at, from.size(), to);
   return text;
-}
-
-void ExpectConfigError(const std::string& text, const std::string& part) {
-  kelvin::testing::ScopedTempDir tmp;
-  RunOptions o;
-  o.progress = false;
-  try {
-    RunCase(Write(tmp.path(), text), o);
-    FAIL() << "expected a ConfigError with '" << part << "'";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("case.yaml"), std::string::npos) << e.what();
-  }
 }
 
 std::vector<double> FreeSurfaceState(const fs::path& checkpoint) {
@@ -87,7 +71,7 @@ TEST(FreeSurfaceCase, RunWritesEtaOnThePatchAndRestartsBitForBit) {
   kelvin::testing::ScopedTempDir tmp;
   RunOptions o;
   o.progress = false;
-  const RunSummary s = RunCase(Write(tmp.path(), CaseText(1.0)), o);
+  const RunSummary s = RunCase(WriteCase(tmp.path(), CaseText(1.0)), o);
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
   EXPECT_EQ(s.steps, 4);
   ASSERT_TRUE(fs::exists(tmp / "out" / "zmax.pvd"));
@@ -104,11 +88,11 @@ TEST(FreeSurfaceCase, RunWritesEtaOnThePatchAndRestartsBitForBit) {
   // Straight to t = 1 against t = 0.5 plus a restart to t = 1.
   const std::vector<double> straight = FreeSurfaceState(tmp / "out" / "checkpoint.h5");
   kelvin::testing::ScopedTempDir tmp2;
-  RunCase(Write(tmp2.path(), CaseText(0.5)), o);
+  RunCase(WriteCase(tmp2.path(), CaseText(0.5)), o);
   RunOptions restart = o;
   restart.restart = tmp2 / "out" / "checkpoint.h5";
   restart.output_override = tmp2 / "out2";
-  const RunSummary s2 = RunCase(Write(tmp2.path(), CaseText(1.0)), restart);
+  const RunSummary s2 = RunCase(WriteCase(tmp2.path(), CaseText(1.0)), restart);
   ASSERT_EQ(s2.status, RunSummary::Status::kCompleted) << s2.message;
   EXPECT_EQ(s2.steps, 2);
   const std::vector<double> restarted = FreeSurfaceState(tmp2 / "out2" / "checkpoint.h5");
@@ -122,57 +106,57 @@ TEST(FreeSurfaceCase, RunWritesEtaOnThePatchAndRestartsBitForBit) {
 }
 
 TEST(FreeSurfaceCase, NegativeGravityIsAnError) {
-  ExpectConfigError(Replace(CaseText(), "g: 9.81", "g: -9.81"), "g");
+  ExpectCaseConfigError(Replace(CaseText(), "g: 9.81", "g: -9.81"), "g");
 }
 
 TEST(FreeSurfaceCase, UnknownKeyNamesTheKey) {
-  ExpectConfigError(Replace(CaseText(), "advection: quick", "advektion: quick"), "advektion");
+  ExpectCaseConfigError(Replace(CaseText(), "advection: quick", "advektion: quick"), "advektion");
 }
 
 TEST(FreeSurfaceCase, UnknownAdvectionSchemeIsAnError) {
-  ExpectConfigError(Replace(CaseText(), "advection: quick", "advection: central"), "central");
+  ExpectCaseConfigError(Replace(CaseText(), "advection: quick", "advection: central"), "central");
 }
 
 TEST(FreeSurfaceCase, PatchNotInTheCalmWaterPlaneIsAnError) {
   // The condition on zmin (z = -0.5, normal -z) instead of zmax.
   std::string t = Replace(CaseText(), "  zmin: {U: {type: slip}, p: {type: zeroGradient}}\n", "");
   t = Replace(t, "  zmax:\n", "  zmax: {U: {type: slip}, p: {type: zeroGradient}}\n  zmin:\n");
-  ExpectConfigError(t, "not in the calm-water plane");
+  ExpectCaseConfigError(t, "not in the calm-water plane");
 }
 
 TEST(FreeSurfaceCase, VelocityMustBeZeroGradient) {
-  ExpectConfigError(
+  ExpectCaseConfigError(
       Replace(CaseText(), "    U: {type: zeroGradient}\n    p:", "    U: {type: slip}\n    p:"),
       "zeroGradient on a linearizedFreeSurface patch");
 }
 
 TEST(FreeSurfaceCase, BeachNeedsAMeshVelocity) {
-  ExpectConfigError(Replace(CaseText(), "      mesh_velocity: [-1.2495, 0, 0]\n", ""),
+  ExpectCaseConfigError(Replace(CaseText(), "      mesh_velocity: [-1.2495, 0, 0]\n", ""),
                     "mesh_velocity");
 }
 
 TEST(FreeSurfaceCase, UnknownBeachSideIsAnError) {
-  ExpectConfigError(Replace(CaseText(), "sides: [xmax, ymax]", "sides: [xmax, outlet]"), "outlet");
+  ExpectCaseConfigError(Replace(CaseText(), "sides: [xmax, ymax]", "sides: [xmax, outlet]"), "outlet");
 }
 
 TEST(FreeSurfaceCase, NegativeBeachWidthIsAnError) {
-  ExpectConfigError(Replace(CaseText(), "width: 1.25", "width: -1"), "width");
+  ExpectCaseConfigError(Replace(CaseText(), "width: 1.25", "width: -1"), "width");
 }
 
 TEST(FreeSurfaceCase, VerticalMeshVelocityIsAnError) {
-  ExpectConfigError(
+  ExpectCaseConfigError(
       Replace(CaseText(), "mesh_velocity: [-1.2495, 0, 0]", "mesh_velocity: [-1.2495, 0, 0.1]"),
       "mesh_velocity");
 }
 
 TEST(FreeSurfaceCase, UnknownWaterlinePatchIsAnError) {
-  ExpectConfigError(Replace(CaseText(), "      advection: quick\n",
+  ExpectCaseConfigError(Replace(CaseText(), "      advection: quick\n",
                             "      advection: quick\n      waterline_patches: [hull]\n"),
                     "hull");
 }
 
 TEST(FreeSurfaceCase, PressurePatchNeedsAPositiveRadius) {
-  ExpectConfigError(Replace(CaseText(), "radius: 0.5", "radius: 0"), "radius");
+  ExpectCaseConfigError(Replace(CaseText(), "radius: 0.5", "radius: 0"), "radius");
 }
 
 }  // namespace

@@ -9,12 +9,15 @@
 
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
+#include "tests/cfd/cfd_test_support.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::ExpectCaseConfigError;
+using testing::WriteCase;
 
 const char* kCase = R"(mesh:
   box: {max: [1, 1, 0.1], cells: [12, 12, 1], empty: z}
@@ -39,55 +42,36 @@ std::string CaseText(double dt = 0.05, double end = 0.5) {
   return s;
 }
 
-fs::path Write(const fs::path& dir, const std::string& text) {
-  const fs::path p = dir / "case.yaml";
-  std::ofstream(p) << text;
-  return p;
-}
-
-void ExpectConfigError(const std::string& text, const std::string& part) {
-  kelvin::testing::ScopedTempDir tmp;
-  RunOptions o;
-  o.progress = false;
-  try {
-    RunCase(Write(tmp.path(), text), o);
-    FAIL() << "expected a ConfigError with '" << part << "'";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("case.yaml"), std::string::npos) << e.what();
-  }
-}
-
 TEST(CaseRunner, UnknownKeyNamesTheKey) {
   std::string t = CaseText();
   t.replace(t.find("n_correctors"), 12, "n_corectors");
-  ExpectConfigError(t, "n_corectors");
+  ExpectCaseConfigError(t, "n_corectors");
 }
 
 TEST(CaseRunner, UnknownPatchIsAnError) {
   std::string t = CaseText();
   t.replace(t.find("  ymin:"), 7, "  floor:");
-  ExpectConfigError(t, "floor");
+  ExpectCaseConfigError(t, "floor");
 }
 
 TEST(CaseRunner, PatchWithoutConditionIsAnError) {
   std::string t = CaseText();
   const std::size_t at = t.find("  ymin:");
   t.erase(at, t.find('\n', at) - at + 1);
-  ExpectConfigError(t, "ymin");
+  ExpectCaseConfigError(t, "ymin");
 }
 
 TEST(CaseRunner, UnknownConditionTypeIsAnError) {
   std::string t = CaseText();
   t.replace(t.find("type: noSlip"), 12, "type: sticky");
-  ExpectConfigError(t, "sticky");
+  ExpectCaseConfigError(t, "sticky");
 }
 
 TEST(CaseRunner, RunWritesFieldsHistoryAndCheckpoint) {
   kelvin::testing::ScopedTempDir tmp;
   RunOptions o;
   o.progress = false;
-  const RunSummary s = RunCase(Write(tmp.path(), CaseText()), o);
+  const RunSummary s = RunCase(WriteCase(tmp.path(), CaseText()), o);
   EXPECT_EQ(s.status, RunSummary::Status::kCompleted);
   EXPECT_EQ(s.steps, 10);
   EXPECT_TRUE(fs::exists(tmp / "out" / "fields.pvd"));
@@ -106,11 +90,11 @@ TEST(CaseRunner, CliRunAndRestart) {
   const fs::path kelvin = kelvin::testing::ToolsDir() / "kelvin";
   if (!fs::exists(kelvin)) GTEST_SKIP() << "kelvin CLI not built";
   kelvin::testing::ScopedTempDir tmp;
-  const fs::path c = Write(tmp.path(), CaseText(0.05, 0.25));
+  const fs::path c = WriteCase(tmp.path(), CaseText(0.05, 0.25));
   auto r = kelvin::testing::RunCommand(kelvin.string() + " run --no-progress " + c.string());
   EXPECT_EQ(r.exit_code, 0) << r.output;
   // Continue from the checkpoint at t = 0.25 to t = 0.5.
-  const fs::path c2 = Write(tmp.path(), CaseText(0.05, 0.5));
+  const fs::path c2 = WriteCase(tmp.path(), CaseText(0.05, 0.5));
   r = kelvin::testing::RunCommand(kelvin.string() + " run --no-progress --restart " +
                                   (tmp / "out" / "checkpoint.h5").string() + " -o " + (tmp / "out2").string() + " " +
                                   c2.string());
@@ -129,7 +113,7 @@ TEST(CaseRunner, DivergenceStopsWithAStatusAndKeepsTheLastGoodCheckpoint) {
   t.replace(t.find("checkpoint_interval: 5"), 22, "checkpoint_interval: 1");
   RunOptions o;
   o.progress = false;
-  const RunSummary s = RunCase(Write(tmp.path(), t), o);
+  const RunSummary s = RunCase(WriteCase(tmp.path(), t), o);
   ASSERT_EQ(s.status, RunSummary::Status::kDiverged) << s.message;
   EXPECT_NE(s.message.find("diverged at step"), std::string::npos) << s.message;
   EXPECT_LT(s.steps, 20);

@@ -10,12 +10,14 @@
 #include "cfd/io/checkpoint.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
+#include "tests/cfd/cfd_test_support.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::WriteCase;
 using ::testing::HasSubstr;
 
 // A small 2D block on a yawing and swaying mesh (yaw with drift).
@@ -39,17 +41,11 @@ output: {directory: out, vtu_interval: 0, checkpoint_interval: 20, forces: [obst
          captive: {length: 1.0, draft: 1.0}}
 )";
 
-fs::path Write(const fs::path& dir, const std::string& text) {
-  const fs::path p = dir / "case.yaml";
-  std::ofstream(p) << text;
-  return p;
-}
-
 TEST(MotionCase, HistoryHoldsShipAxisLoadsAndTheMotion) {
   kelvin::testing::ScopedTempDir tmp;
   RunOptions o;
   o.progress = false;
-  const RunSummary s = RunCase(Write(tmp.path(), kCase), o);
+  const RunSummary s = RunCase(WriteCase(tmp.path(), kCase), o);
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
   EXPECT_EQ(s.steps, 80);  // ramp 0.5 s -> first boundary at 2 s, one period: end 4 s
   const data::H5Reader r(tmp / "out/history.h5");
@@ -77,7 +73,7 @@ TEST(MotionCase, RestartOfAMovingMeshContinuesBitForBit) {
   RunOptions o;
   o.progress = false;
   // Whole run, then the same case restarted from its step-40 checkpoint.
-  RunCase(Write(tmp.path(), kCase), o);
+  RunCase(WriteCase(tmp.path(), kCase), o);
   const data::H5Reader whole(tmp / "out/history.h5");
   const std::vector<double> y_whole = whole.Read("captive/Y").values;
 
@@ -86,10 +82,10 @@ TEST(MotionCase, RestartOfAMovingMeshContinuesBitForBit) {
   half.replace(half.find("time: {dt: 0.05}"), 16, "time: {dt: 0.05, end: 2.0}");
   const fs::path dir2 = tmp / "half";
   fs::create_directories(dir2);
-  RunCase(Write(dir2, half), o);
+  RunCase(WriteCase(dir2, half), o);
   o.restart = dir2 / "out/checkpoint.h5";
   o.output_override = tmp / "restarted";
-  const RunSummary s = RunCase(Write(tmp.path(), kCase), o);
+  const RunSummary s = RunCase(WriteCase(tmp.path(), kCase), o);
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted);
   EXPECT_EQ(s.steps, 40);
   const std::vector<double> y_restarted =
@@ -114,7 +110,7 @@ TEST_P(BadMotionCaseTest, IsOneClearError) {
   RunOptions o;
   o.progress = false;
   try {
-    RunCase(Write(tmp.path(), text), o);
+    RunCase(WriteCase(tmp.path(), text), o);
     FAIL() << "accepted " << GetParam().to;
   } catch (const ConfigError& e) {
     EXPECT_THAT(e.what(), HasSubstr("case.yaml"));
@@ -147,7 +143,7 @@ TEST(MotionCase, MovingWallVelocityNeedsAMotion) {
   RunOptions o;
   o.progress = false;
   try {
-    RunCase(Write(tmp.path(), text), o);
+    RunCase(WriteCase(tmp.path(), text), o);
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_THAT(

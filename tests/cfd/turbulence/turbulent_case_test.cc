@@ -8,12 +8,15 @@
 #include "cfd/io/case_runner.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
+#include "tests/cfd/cfd_test_support.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::ExpectCaseConfigError;
+using testing::WriteCase;
 
 // Channel flow at Re_H = 1e4 entering a plane channel with both walls.
 const char* kCase = R"(mesh:
@@ -41,17 +44,11 @@ std::string CaseText(double end) {
   return s;
 }
 
-fs::path Write(const fs::path& dir, const std::string& text) {
-  const fs::path p = dir / "case.yaml";
-  std::ofstream(p) << text;
-  return p;
-}
-
 TEST(TurbulentCase, WritesTurbulenceOutputsAndStaysPositive) {
   kelvin::testing::ScopedTempDir tmp;
   RunOptions o;
   o.progress = false;
-  const RunSummary s = RunCase(Write(tmp.path(), CaseText(0.5)), o);
+  const RunSummary s = RunCase(WriteCase(tmp.path(), CaseText(0.5)), o);
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
   EXPECT_NE(s.message.find("y+ on ymin"), std::string::npos) << s.message;
   std::ifstream vtu(tmp / "out" / "fields_000010.vtu");
@@ -80,31 +77,18 @@ TEST(TurbulentCase, RestartIsBitwise) {
   kelvin::testing::ScopedTempDir tmp;
   RunOptions o;
   o.progress = false;
-  ASSERT_EQ(RunCase(Write(tmp.path(), CaseText(0.5)), o).status, RunSummary::Status::kCompleted);
+  ASSERT_EQ(RunCase(WriteCase(tmp.path(), CaseText(0.5)), o).status, RunSummary::Status::kCompleted);
   fs::rename(tmp / "out", tmp / "straight");
-  ASSERT_EQ(RunCase(Write(tmp.path(), CaseText(0.25)), o).status, RunSummary::Status::kCompleted);
+  ASSERT_EQ(RunCase(WriteCase(tmp.path(), CaseText(0.25)), o).status, RunSummary::Status::kCompleted);
   RunOptions r = o;
   r.restart = tmp / "out" / "checkpoint.h5";
   r.output_override = tmp / "restarted";
-  ASSERT_EQ(RunCase(Write(tmp.path(), CaseText(0.5)), r).status, RunSummary::Status::kCompleted);
+  ASSERT_EQ(RunCase(WriteCase(tmp.path(), CaseText(0.5)), r).status, RunSummary::Status::kCompleted);
   data::H5Reader a(tmp / "straight" / "checkpoint.h5"), b(tmp / "restarted" / "checkpoint.h5");
   for (const char* name : {"U", "p", "phi", "turbulence/k", "turbulence/omega", "turbulence/nut"}) {
     const auto va = a.Read(name).values, vb = b.Read(name).values;
     ASSERT_EQ(va.size(), vb.size()) << name;
     for (std::size_t i = 0; i < va.size(); ++i) ASSERT_EQ(va[i], vb[i]) << name << "[" << i << "]";
-  }
-}
-
-void ExpectConfigError(const std::string& text, const std::string& part) {
-  kelvin::testing::ScopedTempDir tmp;
-  RunOptions o;
-  o.progress = false;
-  try {
-    RunCase(Write(tmp.path(), text), o);
-    FAIL() << "expected a ConfigError with '" << part << "'";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("case.yaml"), std::string::npos) << e.what();
   }
 }
 
@@ -114,14 +98,14 @@ TEST(TurbulentCase, BadInputsNameTheKey) {
     t.replace(t.find(from), from.size(), to);
     return t;
   };
-  ExpectConfigError(with("model: kOmegaSST", "model: kEpsilon"), "kOmegaSST or laminar");
-  ExpectConfigError(with("intensity: 0.01", "intensity: 2"), "intensity");
-  ExpectConfigError(with("viscosity_ratio: 5", "viscosity_ratio: -1"), "viscosity_ratio");
-  ExpectConfigError(with(", reference_speed: 1.0", ""), "reference_speed");
-  ExpectConfigError(with("  model: kOmegaSST", "  model: kOmegaSST\n  wall_treatment: spalding"), "wall_treatment");
+  ExpectCaseConfigError(with("model: kOmegaSST", "model: kEpsilon"), "kOmegaSST or laminar");
+  ExpectCaseConfigError(with("intensity: 0.01", "intensity: 2"), "intensity");
+  ExpectCaseConfigError(with("viscosity_ratio: 5", "viscosity_ratio: -1"), "viscosity_ratio");
+  ExpectCaseConfigError(with(", reference_speed: 1.0", ""), "reference_speed");
+  ExpectCaseConfigError(with("  model: kOmegaSST", "  model: kOmegaSST\n  wall_treatment: spalding"), "wall_treatment");
   std::string no_walls = with("ymin: {U: {type: noSlip}", "ymin: {U: {type: slip}");
   no_walls.replace(no_walls.find("ymax: {U: {type: noSlip}"), 24, "ymax: {U: {type: slip}");
-  ExpectConfigError(no_walls, "at least one wall patch");
+  ExpectCaseConfigError(no_walls, "at least one wall patch");
 }
 
 }  // namespace
