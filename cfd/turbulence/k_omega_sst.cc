@@ -169,6 +169,10 @@ void KOmegaSst::UpdateViscosity() {
     const double k = (*k_)[c], w = (*omega_)[c];
     nut_[c] = opt_.a1 * k / std::max(opt_.a1 * w, std::sqrt(S2_[c]) * F2_[c]);
   }
+  UpdateFaceViscosity();
+}
+
+void KOmegaSst::UpdateFaceViscosity() {
   const int ni = mesh_.n_internal_faces();
   const auto w = mesh_.weights();
   for (int f = 0; f < ni; ++f) {
@@ -386,8 +390,7 @@ std::vector<TurbulenceOutput> KOmegaSst::CellOutputs() const {
 
 std::vector<std::pair<std::string, std::vector<double>>> KOmegaSst::State() const {
   std::vector<std::pair<std::string, std::vector<double>>> s = {
-      {"k", k_->values()}, {"omega", omega_->values()}, {"nut", nut_}, {"nut_wall", nut_wall_},
-      {"nu_eff_faces", nu_eff_faces_}, {"F1", F1_}, {"F2", F2_}, {"S2", S2_}};
+      {"k", k_->values()}, {"omega", omega_->values()}, {"nut", nut_}, {"nut_wall", nut_wall_}};
   for (int l = 0; l < k_->n_old(); ++l) s.emplace_back(fmt::format("k_old{}", l), k_->old(l));
   for (int l = 0; l < omega_->n_old(); ++l) s.emplace_back(fmt::format("omega_old{}", l), omega_->old(l));
   return s;
@@ -414,15 +417,6 @@ void KOmegaSst::SetState(const std::vector<std::pair<std::string, std::vector<do
     } else if (name == "nut_wall") {
       expect(v, mesh_.n_boundary_faces(), name);
       nut_wall_ = v;
-    } else if (name == "nu_eff_faces") {
-      expect(v, mesh_.n_faces(), name);
-      nu_eff_faces_ = v;
-    } else if (name == "F1") {
-      F1_ = v;
-    } else if (name == "F2") {
-      F2_ = v;
-    } else if (name == "S2") {
-      S2_ = v;
     } else if (name.rfind("k_old", 0) == 0) {
       k_old.push_back(v);
     } else if (name.rfind("omega_old", 0) == 0) {
@@ -433,6 +427,9 @@ void KOmegaSst::SetState(const std::vector<std::pair<std::string, std::vector<do
   }
   k_->SetOld(std::move(k_old));
   omega_->SetOld(std::move(omega_old));
+  // The blending functions and the strain rate are recomputed at the start
+  // of the next correction; the face viscosities follow from nu_t.
+  UpdateFaceViscosity();
   initialized_ = true;
 }
 

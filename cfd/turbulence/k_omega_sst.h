@@ -124,6 +124,8 @@ class KOmegaSst : public TurbulenceModel {
   void UpdateWall(const VectorField& U);
   // nu_t in the cells from k, omega, S and F2; then the face viscosities.
   void UpdateViscosity();
+  // nu + nu_t on every face from the cell nu_t and the wall values.
+  void UpdateFaceViscosity();
   // Solves one transport equation; returns the initial residual.
   double Solve(ScalarField& field, FvMatrix<double>& m, int& bounded, double floor, int& iterations);
 
