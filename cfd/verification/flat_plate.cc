@@ -240,17 +240,16 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
     for (int f = pp.start; f < pp.start + pp.size; ++f) fx += tau_x(f) * mesh.face_area_magnitudes()[f];
     return fx / (0.5 * U * U * L * span);
   };
-  // Pseudo time step from the plate cell at x = L/2.
-  double dx_mid = 0.0;
-  for (int f = pp.start; f < pp.start + pp.size; ++f) {
-    if (std::abs(mesh.face_centres()[f][0] - 0.5 * L) < std::abs(dx_mid - 0.5 * L) || dx_mid == 0.0) {
-      dx_mid = mesh.face_centres()[f][0];
+  // The plate face whose centre is nearest to x.
+  auto nearest_face = [&](double x) {
+    int face = pp.start;
+    for (int f = pp.start; f < pp.start + pp.size; ++f) {
+      if (std::abs(mesh.face_centres()[f][0] - x) < std::abs(mesh.face_centres()[face][0] - x)) face = f;
     }
-  }
-  double dx_cell = 0.0;
-  for (int f = pp.start; f < pp.start + pp.size; ++f) {
-    if (mesh.face_centres()[f][0] == dx_mid) dx_cell = mesh.face_area_magnitudes()[f] / (span);
-  }
+    return face;
+  };
+  // Pseudo time step from the plate cell at x = L/2.
+  const double dx_cell = mesh.face_area_magnitudes()[nearest_face(0.5 * L)] / span;
   const double dt = run.courant * dx_cell / U;
   const int steps_per_flow = std::max(1, static_cast<int>(std::ceil(L / (U * dt))));
 
@@ -303,10 +302,7 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
     r.cf.push_back(tau_x(f) / (0.5 * U * U));
   }
   // Profile: the column of cells above the plate face nearest to 0.8 L.
-  int face = pp.start;
-  for (int f = pp.start; f < pp.start + pp.size; ++f) {
-    if (std::abs(mesh.face_centres()[f][0] - 0.8 * L) < std::abs(mesh.face_centres()[face][0] - 0.8 * L)) face = f;
-  }
+  const int face = nearest_face(0.8 * L);
   r.x_profile = mesh.face_centres()[face][0];
   const double u_tau = std::sqrt(std::abs(tau_x(face)));
   const double x0 = r.x_profile;
