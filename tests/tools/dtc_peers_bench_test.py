@@ -46,14 +46,14 @@ class Settling(unittest.TestCase):
         self.assertFalse(s["settled"])
         self.assertGreater(s["spread"], 1e-3)
 
-    def test_slow_drift_entering_the_band_inside_the_window_is_not_settled(self):
-        # Drift of 1.5e-5 per iteration: the last-10% window spans only 0.15%, so all of
-        # it lies within 0.1% of its mean (1.01424), but the history enters the band at index
-        # 882 (1.5e-5 |i - 949.5| <= 1e-3 x 1.01424), inside the window (900..999): not settled.
-        values = [1.0 + 1.5e-5 * i for i in range(1000)]
+    def test_an_oscillation_passing_through_the_band_at_the_end_is_not_settled(self):
+        # 0.5% oscillation with period 50: the window (last 100 = two periods) has
+        # mean 1 and spread 0.5%; the last value, 1 + 0.005 sin(-0.126) = 0.99937,
+        # happens to be inside the 0.1% band and the one before (0.99876) outside.
+        values = [1.0 + 0.005 * math.sin(2 * math.pi * i / 50) for i in range(1000)]
         s = b.settling(list(range(1000)), list(range(1000)), values, 1e-3)
-        self.assertLess(s["spread"], 1e-3)
-        self.assertEqual(s["index"], 882)
+        self.assertEqual(s["index"], 999)
+        self.assertAlmostEqual(s["spread"], 0.005, places=4)
         self.assertFalse(s["settled"])
 
     def test_last_value_outside_the_band_means_never(self):
