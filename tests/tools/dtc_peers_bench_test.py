@@ -130,6 +130,8 @@ class Parsing(unittest.TestCase):
             h["forces/deck/viscous"] = [[0.0, 0.0, 0.0] for i in range(n)]
         with open(os.path.join(self.d, "kelvin.log"), "w") as f:
             f.write("[info] mesh quality:\ncells 5000  faces 16000 (internal 14000)  points 6000\n")
+        with open(os.path.join(self.d, "bench.json"), "w") as f:
+            f.write('{"case": "x.yaml", "process_cpu": 45.0}')  # 5 s outside the 40 s time loop
         args = argparse.Namespace(kelvin_patches=None, kelvin_force_factor=2.0, kelvin_cells=None, skip=10,
                                   tol_fine=1e-3, tol_coarse=1e-2)
         m = b.analyse_kelvin(self.d, args)
@@ -141,6 +143,7 @@ class Parsing(unittest.TestCase):
         # 8 exp(-i/20) <= 20e-3 <=> i >= 20 ln 400 = 119.8 -> index 120, step 121
         self.assertEqual(m["settle_fine"]["iteration"], 121)
         self.assertAlmostEqual(m["settle_fine"]["cpu"], 12.1)
+        self.assertAlmostEqual(m["settle_fine"]["cpu_charged"], 17.1)
         args.kelvin_patches = ["keel"]
         with self.assertRaises(SystemExit):
             b.analyse_kelvin(self.d, args)

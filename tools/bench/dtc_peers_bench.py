@@ -271,9 +271,8 @@ def kelvin_run(args):
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     print(f"running kelvin run {case} -o {d} ...", flush=True)
     with open(os.path.join(d, "kelvin.log"), "w") as f:
-        rc = subprocess.call(["nice", "-n", "10", args.kelvin, "run", case, "-o", d, "--no-progress"]
-                             if args.kelvin_no_progress else ["nice", "-n", "10", args.kelvin, "run", case, "-o", d],
-                             env=env, stdout=f, stderr=subprocess.STDOUT)
+        rc = subprocess.call(["nice", "-n", "10", args.kelvin, "run", case, "-o", d, "--no-progress"], env=env,
+                             stdout=f, stderr=subprocess.STDOUT)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if rc != 0:
         sys.exit(f"kelvin run failed (exit {rc}); see {d}/kelvin.log")
@@ -335,6 +334,13 @@ def analyse_kelvin(d, args):
          "R_viscous": final_value([k * v for v in fv])[0],
          "settle_fine": settling(steps, cpu, res, args.tol_fine),
          "settle_coarse": settling(steps, cpu, res, args.tol_coarse), "case": bench.get("case", "")}
+    # OpenFOAM's ExecutionTime includes its start-up; kelvin's cpu_time starts at
+    # the time loop. The ratios charge kelvin everything outside the loop too
+    # (process CPU - loop CPU: set-up and the final writes), an upper bound.
+    m["setup_cpu"] = max(0.0, m["process_cpu"] - m["cpu_total"]) if m["process_cpu"] is not None else 0.0
+    for tag in ("settle_fine", "settle_coarse"):
+        s = m[tag]
+        s["cpu_charged"] = s["cpu"] + m["setup_cpu"] if s["cpu"] is not None else None
     return m
 
 
@@ -359,10 +365,12 @@ def replace_section(path, name, section):
     os.replace(tmp, path)
 
 
-def settle_text(s):
+def settle_text(s, unit="iteration"):
     if s["iteration"] is None:
         return "never (last value outside the band)"
-    t = f"iteration {s['iteration']:.0f}, {s['cpu']:.1f} s CPU"
+    t = f"{unit} {s['iteration']:.0f}, {s['cpu']:.1f} s CPU"
+    if "cpu_charged" in s:
+        t += f" ({s['cpu_charged']:.1f} s with set-up)"
     if not s["settled"]:
         t += f" (NOT settled: last-10% window spread {100 * s['spread']:.2f}% of final)"
     return t
@@ -414,9 +422,9 @@ def report(db, vof, rec, kv, args):
              + (f"{kv['R']:.2f} N (pressure {kv['R_pressure']:.2f}, viscous {kv['R_viscous']:.2f})" if kv
                 else "not run") + " |")
     L.append(f"| settled within {100 * args.tol_fine:g}% | {settle_text(db['settle'])} | - | "
-             + (settle_text(kv["settle_fine"]) if kv else "not run") + " |")
+             + (settle_text(kv["settle_fine"], "step") if kv else "not run") + " |")
     L.append(f"| settled within {100 * args.tol_coarse:g}% | - | {settle_text(vof['settle'])} | "
-             + (settle_text(kv["settle_coarse"]) if kv else "not run") + " |")
+             + (settle_text(kv["settle_coarse"], "step") if kv else "not run") + " |")
     L.append("")
     L.append(f"Peer parameters: double body `{' '.join(f'{k}={v}' for k, v in sorted(db['params'].items()))}`, "
              f"VOF `{' '.join(f'{k}={v}' for k, v in sorted(vof['params'].items()))}`. CPU per cell per iteration "
@@ -436,30 +444,30 @@ def report(db, vof, rec, kv, args):
         kf, kc = kv["settle_fine"], kv["settle_coarse"]
         dbs, vs = db["settle"], vof["settle"]
         r_cell = kv["cpu_cell_outer"] / db["cpu_cell_iter"]
-        L.append(f"| kelvin CPU per cell per outer iteration / simpleFoam per SIMPLE iteration | {r_cell:.2f} | - | - |")
+        L.append(f"| kelvin CPU per cell per outer iteration / simpleFoam per SIMPLE iteration | {r_cell:.3g} | - | - |")
         if kf["cpu"] is not None and dbs["cpu"] is not None:
-            r = kf["cpu"] / dbs["cpu"]
+            r = kf["cpu_charged"] / dbs["cpu"]
             ok = r <= 1.5 and kf["settled"] and dbs["settled"]
             L.append(f"| kelvin LFS CPU to {100 * args.tol_fine:g}% / double body CPU to {100 * args.tol_fine:g}% "
-                     f"| {r:.2f} | <= 1.5 | {'met' if ok else 'NOT met'} |")
+                     f"| {r:.3g} | <= 1.5 | {'met' if ok else 'NOT met'} |")
         if kc["cpu"] is not None and vs["cpu"] is not None:
-            r = vs["cpu"] / kc["cpu"]
+            r = vs["cpu"] / kc["cpu_charged"]
             ok = r >= 15 and kc["settled"] and vs["settled"]
             L.append(f"| VOF CPU to {100 * args.tol_coarse:g}% / kelvin LFS CPU to {100 * args.tol_coarse:g}% | "
-                     f"{r:.1f} | >= 15 | {'met' if ok else 'NOT met'} |")
+                     f"{r:.3g} | >= 15 | {'met' if ok else 'NOT met'} |")
             if kf["cpu"] is not None:
-                r2 = vs["cpu"] / kf["cpu"]
+                r2 = vs["cpu"] / kf["cpu_charged"]
                 L.append(f"| VOF CPU to {100 * args.tol_coarse:g}% / kelvin LFS CPU to {100 * args.tol_fine:g}% "
-                         f"(stricter for kelvin) | {r2:.1f} | >= 15 | {'met' if r2 >= 15 and kf['settled'] and vs['settled'] else 'NOT met'} |")
+                         f"(stricter for kelvin) | {r2:.3g} | >= 15 | {'met' if r2 >= 15 and kf['settled'] and vs['settled'] else 'NOT met'} |")
         L.append(f"| kelvin R / double-body R | {kv['R'] / db['R']:.3f} | - | - |")
     else:
         L.append("| kelvin LFS CPU to 0.1% / double body CPU to 0.1% | not measured (no kelvin DTC LFS run "
                  "given) | <= 1.5 | not assessed |")
         L.append("| VOF CPU to 1% / kelvin LFS CPU to 1% | not measured | >= 15 | not assessed |")
-    L.append(f"| VOF CPU per cell per iteration / double body | {vof['cpu_cell_iter'] / db['cpu_cell_iter']:.2f} | - | - |")
+    L.append(f"| VOF CPU per cell per iteration / double body | {vof['cpu_cell_iter'] / db['cpu_cell_iter']:.3g} | - | - |")
     if db["settle"]["cpu"] is not None and vof["settle"]["cpu"] is not None:
         L.append(f"| VOF CPU to {100 * args.tol_coarse:g}% / double body CPU to {100 * args.tol_fine:g}% | "
-                 f"{vof['settle']['cpu'] / db['settle']['cpu']:.1f} | - | - |")
+                 f"{vof['settle']['cpu'] / db['settle']['cpu']:.3g} | - | - |")
     L.append("")
     notes = []
     for name, m in (("double body", db), ("VOF", vof)):
@@ -495,7 +503,6 @@ def main():
                     help="multiplies kelvin's force (2 for a half-hull grid with a symmetry plane)")
     ap.add_argument("--kelvin-cells", type=int, help="cell count if the log does not have it")
     ap.add_argument("--kelvin-mesh-note", default="", help="near-hull spacing of kelvin's grid (report text)")
-    ap.add_argument("--kelvin-no-progress", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--tol-fine", type=float, default=1e-3, help="double body / kelvin settling tolerance")
     ap.add_argument("--tol-coarse", type=float, default=1e-2, help="VOF settling tolerance")
     ap.add_argument("--skip", type=int, default=10, help="iterations excluded from CPU per cell per iteration")
