@@ -230,12 +230,24 @@ def analyse_peer(kind, d, params, tol, skip):
     forces = read_forces_csv(os.path.join(d, "forces.csv"), int(params["NPROC"]))
     m = peer_metrics(forces, int(t["cells"]), tol, skip)
     m["dir"] = d
+    m["kind"] = kind
     m["mesh_s"] = t.get("mesh_end", 0.0) - t.get("mesh_start", 0.0)
     m["params"] = params
     m["dx_hull"] = 1.0 / 2 ** int(params["NLEV"]) * int(params["XYDIV"])
     nz3 = max(1, int(4 / int(params["ZDIV"]) + 0.5))
     m["dz_waterline"] = 0.059 / nz3  # tutorial block 0.185 < z < 0.244 has 4 cells / ZDIV
+    m["layers"] = snappy_layers(os.path.join(d, "log.snappyHexMesh"))
     return m
+
+
+def snappy_layers(log):
+    """(hull faces, mean layers, thickness m) from snappyHexMesh's layer table, or None."""
+    try:
+        with open(log, errors="replace") as f:
+            m = re.findall(r"^hull\s+(\d+)\s+([0-9.eE+-]+)\s+([0-9.eE+-]+)", f.read(), re.M)
+    except OSError:
+        return None
+    return (int(m[-1][0]), float(m[-1][1]), float(m[-1][2])) if m else None
 
 
 def check_reconstruct(args):
@@ -406,10 +418,18 @@ def report(db, vof, rec, kv, args):
 
     kcells = str(kv["cells"]) if kv else "not run"
     L.append(f"| cells | {db['cells']} | {vof['cells']} | {kcells} |")
-    L.append(f"| near-hull spacing | dx = dy = {db['dx_hull']:.4f} m, dz = {db['dz_waterline']:.4f} m (snapped, "
-             f"3 layers) | dx = dy = {vof['dx_hull']:.4f} m, dz = {vof['dz_waterline']:.4f} m (castellated, no "
+    dbl = db["layers"]
+    dbl = (f"snapped, {dbl[0]} hull faces, {dbl[1]:.2f} of 3 layers on average, {dbl[2]:.4f} m thick" if dbl
+           else "snapped, 3 layers requested")
+    L.append(f"| near-hull spacing (waterline band) | dx = dy = {db['dx_hull']:.4f} m, dz = {db['dz_waterline']:.4f} m "
+             f"({dbl}) | dx = dy = {vof['dx_hull']:.4f} m, dz = {vof['dz_waterline']:.4f} m (castellated, no "
              f"layers) | {args.kelvin_mesh_note or ('see the case' if kv else 'not run')} |")
-    L.append(f"| iterations run | {db['iterations']} SIMPLE | {vof['iterations']} LTS | "
+    def iters(m, what):
+        t = f"{m['iterations']} {what}"
+        if m["iterations"] < int(m["params"]["NITER"]):
+            t += f" (stopped by the wall-clock cap WALLMAX = {RUN_CONTROL[m['kind']]['WALLMAX']} s; NITER = {m['params']['NITER']})"
+        return t
+    L.append(f"| iterations run | {iters(db, 'SIMPLE')} | {iters(vof, 'LTS')} | "
              + (f"{kv['iterations']} steps ({kv['outer_total']} outer iterations)" if kv else "not run") + " |")
     L.append(f"| CPU per cell per iteration | {db['cpu_cell_iter'] * us:.3f} us | {vof['cpu_cell_iter'] * us:.3f} us | "
              + (f"{kv['cpu_cell_step'] * us:.3f} us per step, {kv['cpu_cell_outer'] * us:.3f} us per outer iteration"
@@ -444,6 +464,8 @@ def report(db, vof, rec, kv, args):
         kf, kc = kv["settle_fine"], kv["settle_coarse"]
         dbs, vs = db["settle"], vof["settle"]
         r_cell = kv["cpu_cell_outer"] / db["cpu_cell_iter"]
+        L.append(f"| kelvin cells / double-body cells / VOF cells | 1 / {db['cells'] / kv['cells']:.3g} / "
+                 f"{vof['cells'] / kv['cells']:.3g} | comparable near-hull resolution | see the spacing row |")
         L.append(f"| kelvin CPU per cell per outer iteration / simpleFoam per SIMPLE iteration | {r_cell:.3g} | - | - |")
         if kf["cpu"] is not None and dbs["cpu"] is not None:
             r = kf["cpu_charged"] / dbs["cpu"]
@@ -484,7 +506,7 @@ def report(db, vof, rec, kv, args):
     else:
         notes.append("kelvin's DTC LFS resistance case was not given to this run: the two kelvin targets (<= 1.5x the "
                      "double body's CPU to converge, >= 15x cheaper than VOF) are not assessed here.")
-    for n in notes:
+    for n in notes + (args.note or []):
         L.append(n + "\n")
     return "\n".join(L) + "\n"
 
@@ -506,6 +528,7 @@ def main():
     ap.add_argument("--tol-fine", type=float, default=1e-3, help="double body / kelvin settling tolerance")
     ap.add_argument("--tol-coarse", type=float, default=1e-2, help="VOF settling tolerance")
     ap.add_argument("--skip", type=int, default=10, help="iterations excluded from CPU per cell per iteration")
+    ap.add_argument("--note", action="append", help="a paragraph added to the report (repeatable)")
     ap.add_argument("--write", metavar="BENCHMARKS.md", help="write the section into this file")
     args = ap.parse_args()
     args.runs_dir = os.path.abspath(args.runs_dir)
