@@ -30,7 +30,11 @@ cpu_time, outer_iterations) and the cell count from the run log.
 Usage:
   tools/bench/dtc_peers_bench.py [--runs-dir /work/peer_runs] [--write BENCHMARKS.md]
       [--kelvin build/release/tools/kelvin --kelvin-case data/cases/<dtc case>.yaml
-       --kelvin-force-factor 2] [--kelvin-output DIR] [--no-peer-runs] [--rerun]
+       --kelvin-force-factor 2 --kelvin-patches hull] [--kelvin-output DIR] [--no-peer-runs] [--rerun]
+The peers cost about 10 min (double body) and 30+ min (VOF) of CPU on this
+machine; once they have run, add kelvin with --no-peer-runs so nothing is
+repeated. --kelvin-force-factor 2 for a half-hull grid (symmetry plane y = 0),
+1 for a full hull. kelvin runs with `nice -n 10` and OMPI_MCA_ess_singleton_isolated=1.
 """
 import argparse
 import csv
