@@ -56,6 +56,18 @@ class Settling(unittest.TestCase):
         self.assertAlmostEqual(s["spread"], 0.005, places=4)
         self.assertFalse(s["settled"])
 
+    def test_a_creeping_mean_is_not_settled(self):
+        # Drift of 1.5e-5 per iteration: the last window (900..999) lies within 0.075%
+        # of its mean 1.0142425 and the history enters the 0.1% band at index 882
+        # (1.5e-5 |i - 949.5| <= 1e-3 x 1.0142425), before the window; but the window
+        # mean moved by 1.5e-3 / 1.0142 = 0.148% from the window before: not final.
+        values = [1.0 + 1.5e-5 * i for i in range(1000)]
+        s = b.settling(list(range(1000)), list(range(1000)), values, 1e-3)
+        self.assertEqual(s["index"], 882)
+        self.assertLess(s["spread"], 1e-3)
+        self.assertAlmostEqual(s["drift"], 1.5e-3 / 1.0142425, places=9)
+        self.assertFalse(s["settled"])
+
     def test_last_value_outside_the_band_means_never(self):
         values = [1.0] * 99 + [5.0]
         s = b.settling(list(range(100)), list(range(100)), values, 1e-3)

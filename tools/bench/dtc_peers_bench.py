@@ -121,8 +121,12 @@ def settling(iterations, cpu, values, tol, window_fraction=0.1):
     final, w = final_value(values, window_fraction)
     i = settle_index(values, final, tol)
     spread = max(abs(v - final) for v in values[-w:]) / abs(final) if final != 0 else float("inf")
-    settled = i < len(values) - w and spread <= tol
-    r = {"final": final, "window": w, "tol": tol, "spread": spread, "settled": settled, "index": i}
+    # Drift: change of the window mean against the window before it. A history
+    # still creeping by more than tol per window has no final value yet.
+    previous = values[-2 * w:-w]
+    drift = (final - sum(previous) / len(previous)) / abs(final) if previous and final != 0 else float("inf")
+    settled = i < len(values) - w and spread <= tol and abs(drift) <= tol
+    r = {"final": final, "window": w, "tol": tol, "spread": spread, "drift": drift, "settled": settled, "index": i}
     if i < len(values):
         r["iteration"] = iterations[i]
         r["cpu"] = cpu[i]
@@ -388,7 +392,8 @@ def settle_text(s, unit="iteration"):
     if "cpu_charged" in s:
         t += f" ({s['cpu_charged']:.1f} s with set-up)"
     if not s["settled"]:
-        t += f" (NOT settled: last-10% window spread {100 * s['spread']:.2f}% of final)"
+        t += (f" (NOT settled: last-10% window spread {100 * s['spread']:.2f}%, its mean moved "
+              f"{100 * s['drift']:+.2f}% from the window before)")
     return t
 
 
@@ -502,7 +507,8 @@ def report(db, vof, rec, kv, args):
     for name, m in (("double body", db), ("VOF", vof)):
         if not m["settle"]["settled"]:
             notes.append(f"The {name} run did not settle by the criterion within its {m['iterations']} iterations "
-                         f"(last-10% window spread {100 * m['settle']['spread']:.2f}% of its mean): its CPU time to "
+                         f"(last-10% window spread {100 * m['settle']['spread']:.2f}% of its mean, which moved "
+                         f"{100 * m['settle']['drift']:+.2f}% from the window before): its CPU time to "
                          f"settle is only bounded from below by the whole run, {m['cpu_total']:.0f} s.")
     if kv:
         for tag in ("settle_fine", "settle_coarse"):
