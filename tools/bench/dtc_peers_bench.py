@@ -21,8 +21,10 @@ Metrics, computed from the force history (never by eye):
     is the solver's process CPU time at that iteration (start-up included,
     meshing excluded). tol = 0.1% for the double body and kelvin, 1% for VOF
     (kelvin is also measured at 1% for the like-for-like VOF ratio).
-    A settling that is only reached inside the averaging window, or a window
-    whose own spread exceeds tol, is flagged as not settled.
+    A settling that is only reached inside the averaging window, a window
+    whose own spread exceeds tol, or a window mean that moved by more than tol
+    from the window before (still creeping) is flagged as not settled; the
+    whole run's CPU time is then a lower bound on the time to settle.
 kelvin: `kelvin run <case.yaml> -o <dir>` (or a finished output directory via
 --kelvin-output); reads history.h5 (forces/<patch>/{pressure,viscous},
 cpu_time, outer_iterations) and the cell count from the run log.
