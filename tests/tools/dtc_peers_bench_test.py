@@ -74,6 +74,19 @@ class Settling(unittest.TestCase):
         self.assertIsNone(s["iteration"])
         self.assertFalse(s["settled"])
 
+    def test_running_mean_averages_out_isolated_spikes(self):
+        values = [10.0] * 200
+        for i in range(5, 200, 10):
+            values[i] = 15.0  # a 50% spike every 10 iterations
+        self.assertEqual(b.running_mean([1.0, 2.0, 3.0, 4.0], 2), [1.0, 1.5, 2.5, 3.5])
+        it = list(range(200))
+        self.assertFalse(b.settling(it, it, values, 1e-2)["settled"])
+        sm = b.running_mean(values, 20)  # two spikes in every full window: 10.5 from index 19
+        self.assertAlmostEqual(sm[-1], 10.5)
+        s = b.settling(it, it, sm, 1e-2)
+        self.assertTrue(s["settled"])
+        self.assertAlmostEqual(s["final"], 10.5)
+
     def test_final_value_is_the_mean_of_the_last_tenth(self):
         mean, w = b.final_value(list(range(1, 101)))
         self.assertEqual(w, 10)

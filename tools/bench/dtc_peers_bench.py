@@ -138,6 +138,17 @@ def settling(iterations, cpu, values, tol, window_fraction=0.1):
     return r
 
 
+def running_mean(values, n):
+    """Trailing running mean over n values (fewer at the start)."""
+    out, acc = [], 0.0
+    for i, v in enumerate(values):
+        acc += v
+        if i >= n:
+            acc -= values[i - n]
+        out.append(acc / min(i + 1, n))
+    return out
+
+
 def cpu_per_cell_iteration(iterations, cpu, cells, skip):
     """CPU seconds per cell per iteration between iteration index `skip` and the last."""
     if len(iterations) <= skip + 1:
@@ -182,16 +193,19 @@ def read_timings(path):
     return t
 
 
-def peer_metrics(forces, cells, tol, skip):
-    """Metrics of one peer run from its parsed forces.csv (half-hull forces, full hull = 2x)."""
+def peer_metrics(forces, cells, tol, skip, smooth=0):
+    """Metrics of one peer run from its parsed forces.csv (half-hull forces, full hull = 2x).
+    smooth > 0 adds the settling of the trailing running mean over that many iterations."""
     resistance = [-2.0 * v for v in forces["fx"]]
     s = settling(forces["iter"], forces["cpu"], resistance, tol)
+    smoothed = settling(forces["iter"], forces["cpu"], running_mean(resistance, smooth), tol) if smooth else None
     fp, _ = final_value([-2.0 * v for v in forces["fp"]])
     fv, _ = final_value([-2.0 * v for v in forces["fv"]])
     return {"cells": cells, "iterations": int(forces["iter"][-1]), "cpu_total": forces["cpu"][-1],
             "wall_total": forces["clock"][-1],
             "cpu_cell_iter": cpu_per_cell_iteration(forces["iter"], forces["cpu"], cells, skip),
-            "R": s["final"], "R_pressure": fp, "R_viscous": fv, "settle": s}
+            "R": s["final"], "R_pressure": fp, "R_viscous": fv, "settle": s, "settle_smooth": smoothed,
+            "smooth": smooth}
 
 
 # ---------------------------------------------------------------------------
@@ -233,12 +247,12 @@ def peer_run(kind, params, args):
     return d
 
 
-def analyse_peer(kind, d, params, tol, skip):
+def analyse_peer(kind, d, params, tol, skip, smooth=0):
     t = read_timings(os.path.join(d, "timings.txt"))
     if "cells" not in t:
         sys.exit(f"{d}/timings.txt has no cell count")
     forces = read_forces_csv(os.path.join(d, "forces.csv"), int(params["NPROC"]))
-    m = peer_metrics(forces, int(t["cells"]), tol, skip)
+    m = peer_metrics(forces, int(t["cells"]), tol, skip, smooth)
     m["dir"] = d
     m["kind"] = kind
     m["mesh_s"] = t.get("mesh_end", 0.0) - t.get("mesh_start", 0.0)
@@ -456,6 +470,9 @@ def report(db, vof, rec, kv, args):
              + (settle_text(kv["settle_fine"], "step") if kv else "not run") + " |")
     L.append(f"| settled within {100 * args.tol_coarse:g}% | - | {settle_text(vof['settle'])} | "
              + (settle_text(kv["settle_coarse"], "step") if kv else "not run") + " |")
+    if vof["settle_smooth"]:
+        L.append(f"| settled within {100 * args.tol_coarse:g}%, running mean over {vof['smooth']} iterations | - | "
+                 f"{settle_text(vof['settle_smooth'])} | - |")
     L.append("")
     L.append(f"Peer parameters: double body `{' '.join(f'{k}={v}' for k, v in sorted(db['params'].items()))}`, "
              f"VOF `{' '.join(f'{k}={v}' for k, v in sorted(vof['params'].items()))}`. CPU per cell per iteration "
@@ -483,8 +500,12 @@ def report(db, vof, rec, kv, args):
             ok = r <= 1.5 and kf["settled"] and dbs["settled"]
             L.append(f"| kelvin LFS CPU to {100 * args.tol_fine:g}% / double body CPU to {100 * args.tol_fine:g}% "
                      f"| {r:.3g} | <= 1.5 | {'met' if ok else 'NOT met'} |")
-        # An unsettled VOF run bounds its settling CPU from below by its whole run.
-        vof_cpu, bound = (vs["cpu"], "") if vs["settled"] else (vof["cpu_total"], ">= ")
+        # The VOF reference is the smaller of the raw and the smoothed settling
+        # CPU (the harder target for kelvin); with neither settled, the whole
+        # run bounds it from below.
+        vss = vof["settle_smooth"]
+        cands = [x["cpu"] for x in (vs, vss) if x and x["settled"]]
+        vof_cpu, bound = (min(cands), "") if cands else (vof["cpu_total"], ">= ")
         for ks, label in ((kc, f"{100 * args.tol_coarse:g}%"), (kf, f"{100 * args.tol_fine:g}% (stricter for kelvin)")):
             if ks["cpu"] is None or not ks["settled"]:
                 L.append(f"| VOF CPU to {100 * args.tol_coarse:g}% / kelvin LFS CPU to {label} | kelvin not settled | "
@@ -501,11 +522,17 @@ def report(db, vof, rec, kv, args):
         L.append("| VOF CPU to 1% / kelvin LFS CPU to 1% | not measured | >= 15 | not assessed |")
     L.append(f"| VOF CPU per cell per iteration / double body | {vof['cpu_cell_iter'] / db['cpu_cell_iter']:.3g} | - | - |")
     if db["settle"]["settled"]:
-        vof_cpu, bound = ((vof["settle"]["cpu"], "") if vof["settle"]["settled"] else (vof["cpu_total"], ">= "))
+        cands = [x["cpu"] for x in (vof["settle"], vof["settle_smooth"]) if x and x["settled"]]
+        vof_cpu, bound = (min(cands), "") if cands else (vof["cpu_total"], ">= ")
         L.append(f"| VOF CPU to {100 * args.tol_coarse:g}% / double body CPU to {100 * args.tol_fine:g}% | "
                  f"{bound}{vof_cpu / db['settle']['cpu']:.3g} | - | - |")
     L.append("")
     notes = []
+    if vof["settle_smooth"]:
+        notes.append(f"The VOF ratios use the smaller of the VOF CPU times to settle within "
+                     f"{100 * args.tol_coarse:g}% of the raw history and of its running mean over {vof['smooth']} "
+                     f"iterations (the LTS force carries isolated spikes; the smaller time is the harder target for "
+                     f"kelvin); when neither settled, the whole VOF run is a lower bound (marked >=).")
     for name, m in (("double body", db), ("VOF", vof)):
         if not m["settle"]["settled"]:
             notes.append(f"The {name} run did not settle by the criterion within its {m['iterations']} iterations "
@@ -543,6 +570,8 @@ def main():
     ap.add_argument("--kelvin-mesh-note", default="", help="near-hull spacing of kelvin's grid (report text)")
     ap.add_argument("--tol-fine", type=float, default=1e-3, help="double body / kelvin settling tolerance")
     ap.add_argument("--tol-coarse", type=float, default=1e-2, help="VOF settling tolerance")
+    ap.add_argument("--vof-smooth", type=int, default=25,
+                    help="also settle the VOF history's trailing running mean over this many iterations (0: off)")
     ap.add_argument("--skip", type=int, default=10, help="iterations excluded from CPU per cell per iteration")
     ap.add_argument("--doublebody-param", action="append", default=[], metavar="KEY=VALUE",
                     help="override a run_doublebody.sh parameter (part of the run key)")
@@ -563,7 +592,7 @@ def main():
             target[k] = v
     rec = check_reconstruct(args)
     db = analyse_peer("doublebody", peer_run("doublebody", dbp, args), dbp, args.tol_fine, args.skip)
-    vof = analyse_peer("vof", peer_run("vof", vofp, args), vofp, args.tol_coarse, args.skip)
+    vof = analyse_peer("vof", peer_run("vof", vofp, args), vofp, args.tol_coarse, args.skip, args.vof_smooth)
     kv = None
     if args.kelvin_case or args.kelvin_output:
         kv = analyse_kelvin(kelvin_run(args), args)
