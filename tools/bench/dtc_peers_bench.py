@@ -549,6 +549,14 @@ def report(db, vof, rec, kv, args):
     else:
         notes.append("kelvin's DTC LFS resistance case was not given to this run: the two kelvin targets (<= 1.5x the "
                      "double body's CPU to converge, >= 15x cheaper than VOF) are not assessed here.")
+    if db["settle"]["settled"]:
+        cands = [x["cpu"] for x in (vof["settle"], vof["settle_smooth"]) if x and x["settled"]]
+        budget = (f"kelvin's CPU budgets implied by the targets on this machine: settled within "
+                  f"{100 * args.tol_fine:g}% in <= 1.5 x {db['settle']['cpu']:.1f} = {1.5 * db['settle']['cpu']:.1f} s")
+        if cands:
+            budget += (f", and within {100 * args.tol_coarse:g}% in <= {min(cands):.1f} / 15 = "
+                       f"{min(cands) / 15:.1f} s")
+        notes.insert(0, budget + " (set-up included).")
     for n in notes + (args.note or []):
         L.append(n + "\n")
     return "\n".join(L) + "\n"
