@@ -452,7 +452,8 @@ def report(db, vof, rec, kv, args):
     def iters(m, what):
         t = f"{m['iterations']} {what}"
         if m["iterations"] < int(m["params"]["NITER"]):
-            t += f" (stopped by the wall-clock cap WALLMAX = {RUN_CONTROL[m['kind']]['WALLMAX']} s; NITER = {m['params']['NITER']})"
+            t += (f" (stopped by the wall-clock cap WALLMAX = {RUN_CONTROL[m['kind']]['WALLMAX']} s; "
+                  f"NITER = {m['params']['NITER']})")
         return t
     L.append(f"| iterations run | {iters(db, 'SIMPLE')} | {iters(vof, 'LTS')} | "
              + (f"{kv['iterations']} steps ({kv['outer_total']} outer iterations)" if kv else "not run") + " |")
@@ -494,7 +495,8 @@ def report(db, vof, rec, kv, args):
         r_cell = kv["cpu_cell_outer"] / db["cpu_cell_iter"]
         L.append(f"| kelvin cells / double-body cells / VOF cells | 1 / {db['cells'] / kv['cells']:.3g} / "
                  f"{vof['cells'] / kv['cells']:.3g} | comparable near-hull resolution | see the spacing row |")
-        L.append(f"| kelvin CPU per cell per outer iteration / simpleFoam per SIMPLE iteration | {r_cell:.3g} | - | - |")
+        L.append(f"| kelvin CPU per cell per outer iteration / simpleFoam per SIMPLE iteration | {r_cell:.3g} | - "
+                 f"| - |")
         if kf["cpu"] is not None and dbs["cpu"] is not None:
             r = kf["cpu_charged"] / dbs["cpu"]
             ok = r <= 1.5 and kf["settled"] and dbs["settled"]
@@ -520,7 +522,8 @@ def report(db, vof, rec, kv, args):
         L.append("| kelvin LFS CPU to 0.1% / double body CPU to 0.1% | not measured (no kelvin DTC LFS run "
                  "given) | <= 1.5 | not assessed |")
         L.append("| VOF CPU to 1% / kelvin LFS CPU to 1% | not measured | >= 15 | not assessed |")
-    L.append(f"| VOF CPU per cell per iteration / double body | {vof['cpu_cell_iter'] / db['cpu_cell_iter']:.3g} | - | - |")
+    L.append(f"| VOF CPU per cell per iteration / double body | {vof['cpu_cell_iter'] / db['cpu_cell_iter']:.3g} "
+             f"| - | - |")
     if db["settle"]["settled"]:
         cands = [x["cpu"] for x in (vof["settle"], vof["settle_smooth"]) if x and x["settled"]]
         vof_cpu, bound = (min(cands), "") if cands else (vof["cpu_total"], ">= ")
