@@ -589,9 +589,13 @@ def main():
     ap.add_argument("--vof-param", action="append", default=[], metavar="KEY=VALUE",
                     help="override a run_vof.sh parameter (part of the run key)")
     ap.add_argument("--note", action="append", help="a paragraph added to the report (repeatable)")
+    ap.add_argument("--notes-file", help="paragraphs (separated by blank lines) added to the report")
     ap.add_argument("--write", metavar="BENCHMARKS.md", help="write the section into this file")
     args = ap.parse_args()
     args.runs_dir = os.path.abspath(args.runs_dir)
+    if args.notes_file:
+        with open(args.notes_file) as f:
+            args.note = (args.note or []) + [" ".join(p.split()) for p in f.read().split("\n\n") if p.strip()]
     os.makedirs(args.runs_dir, exist_ok=True)
 
     dbp, vofp = dict(DOUBLEBODY), dict(VOF)
