@@ -32,11 +32,13 @@ cpu_time, outer_iterations) and the cell count from the run log.
 Usage:
   tools/bench/dtc_peers_bench.py [--runs-dir /work/peer_runs] [--write BENCHMARKS.md]
       [--kelvin build/release/tools/kelvin --kelvin-case data/cases/<dtc case>.yaml
-       --kelvin-force-factor 2 --kelvin-patches hull] [--kelvin-output DIR] [--no-peer-runs] [--rerun]
+       --kelvin-force-factor 1 --kelvin-patches hull] [--kelvin-output DIR] [--no-peer-runs] [--rerun]
 The peers cost about 10 min (double body) and 30+ min (VOF) of CPU on this
 machine; once they have run, add kelvin with --no-peer-runs so nothing is
-repeated. --kelvin-force-factor 2 for a half-hull grid (symmetry plane y = 0),
-1 for a full hull. kelvin runs with `nice -n 10` and OMPI_MCA_ess_singleton_isolated=1.
+repeated. --kelvin-force-factor 1 (default) for kelvin's snappy grids, which
+span the full width (-W < y < W, whole hull); 2 for a half-hull grid. The peers
+solve half the hull (symmetry midPlane): their forces are doubled here.
+kelvin runs with `nice -n 10` and OMPI_MCA_ess_singleton_isolated=1.
 """
 import argparse
 import csv
@@ -435,7 +437,8 @@ def report(db, vof, rec, kv, args):
              f"jobs; every solver serial, niced), Debian OpenFOAM v1912 (libopenfoam {of_version}), peer scripts "
              f"`../shared/peers/openfoam/`. Raw outputs outside the repository in `{args.runs_dir}`. CPU times are "
              f"process CPU of the solver (OpenFOAM `ExecutionTime`, kelvin `history.h5` `cpu_time`), meshing "
-             f"excluded. Resistance is the full hull (2x the half-hull force). Settling is computed from the "
+             f"excluded. Resistance is the full hull (the peers mesh half of it with a symmetry midPlane: 2x their "
+             f"force, and their CPU times are for that half domain). Settling is computed from the "
              f"force history: final value = mean over the last 10% of the iterations; settled at the first "
              f"iteration after which every value stays within the tolerance of it.\n")
     L.append("| | OpenFOAM simpleFoam double body | OpenFOAM interFoam VOF (staircase hull) | kelvin LFS |")
@@ -493,12 +496,15 @@ def report(db, vof, rec, kv, args):
         kf, kc = kv["settle_fine"], kv["settle_coarse"]
         dbs, vs = db["settle"], vof["settle"]
         r_cell = kv["cpu_cell_outer"] / db["cpu_cell_iter"]
-        # A kelvin grid far smaller than the peers' is no like-for-like comparison.
-        fewer = db["cells"] / kv["cells"]
-        small = (f", but on a grid with {fewer:.3g}x fewer cells than the double body: check the resolution"
-                 if fewer > 4 else "")
-        L.append(f"| kelvin cells / double-body cells / VOF cells | 1 / {db['cells'] / kv['cells']:.3g} / "
-                 f"{vof['cells'] / kv['cells']:.3g} | comparable near-hull resolution | see the spacing row |")
+        # A kelvin grid far smaller than the peers' is no like-for-like comparison
+        # (cells compared over the same part of the hull: the peers mesh half of it).
+        fewer = db["cells"] * (2.0 / kv["factor"]) / kv["cells"]
+        small = (f", but on a grid with {fewer:.3g}x fewer cells than the double body over the same hull: "
+                 f"check the resolution" if fewer > 4 else "")
+        L.append(f"| kelvin cells / double-body cells / VOF cells (the peers mesh half the hull; kelvin's grid "
+                 f"{'the whole' if kv['factor'] == 1 else '1/' + format(kv['factor'], 'g') + ' of the'} hull) | "
+                 f"1 / {db['cells'] / kv['cells']:.3g} / {vof['cells'] / kv['cells']:.3g} | comparable near-hull "
+                 f"resolution | see the spacing row |")
         L.append(f"| kelvin CPU per cell per outer iteration / simpleFoam per SIMPLE iteration | {r_cell:.3g} | - "
                  f"| - |")
         if kf["cpu"] is not None and dbs["cpu"] is not None:
@@ -579,8 +585,8 @@ def main():
     ap.add_argument("--kelvin-case", help="kelvin case file of the DTC LFS resistance run")
     ap.add_argument("--kelvin-output", help="finished kelvin output directory (history.h5, kelvin.log)")
     ap.add_argument("--kelvin-patches", nargs="*", help="force patches to sum (default: all in history.h5)")
-    ap.add_argument("--kelvin-force-factor", type=float, default=2.0,
-                    help="multiplies kelvin's force (2 for a half-hull grid with a symmetry plane)")
+    ap.add_argument("--kelvin-force-factor", type=float, default=1.0,
+                    help="multiplies kelvin's force (1: full-width grid as kelvin's snappy path writes; 2: half hull)")
     ap.add_argument("--kelvin-cells", type=int, help="cell count if the log does not have it")
     ap.add_argument("--kelvin-mesh-note", default="", help="near-hull spacing of kelvin's grid (report text)")
     ap.add_argument("--tol-fine", type=float, default=1e-3, help="double body / kelvin settling tolerance")
