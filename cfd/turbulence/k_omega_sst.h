@@ -118,6 +118,7 @@ class KOmegaSst : public TurbulenceModel {
   ScalarField& omega() { return *omega_; }
   const std::vector<double>& wall_distance() const { return y_; }
   const std::vector<double>& F1() const { return F1_; }
+  const std::vector<double>& strain_rate_squared() const { return S2_; }  // 2 S_ij S_ij
 
  private:
   // Wall shear, y+, u_tau per wall face and the wall-cell omega, from U.

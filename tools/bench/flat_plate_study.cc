@@ -81,6 +81,10 @@ int main(int argc, char** argv) {
           // nu_t / (kappa u_tau y) is 1 in a log layer with kappa = 0.41.
           fmt::print("  nu_t/(0.41 y+ nu) {:6.3f}  (k/omega)/nu {:9.2f}  F1 {:6.4f}", res.nut_plus[i] / (0.41 * res.y_plus[i]),
                      res.nut_unlimited_plus[i], res.f1[i]);
+          // Log-layer values of the k-omega model are k+ = 1/sqrt(beta*),
+          // omega+ y+ = 1/(sqrt(beta*) kappa) and S+ y+ = 1/kappa.
+          fmt::print("  k+ {:6.3f} omega+ y+ {:6.3f} S+ y+ {:6.3f}", res.k_plus[i], res.omega_plus[i] * res.y_plus[i],
+                     res.strain_plus[i] * res.y_plus[i]);
         }
         fmt::print("\n");
       }
