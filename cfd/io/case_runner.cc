@@ -177,16 +177,26 @@ std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n, 
 
 // p: {type: linearizedFreeSurface, g, mesh_velocity, advection, beach: {width, strength, sides},
 // waterline_patches, pressure_patch: {centre, radius, head}, kinematic_courant} on a patch in z = 0 (see cfd/freesurface/linearized_free_surface.h).
-std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, const Mesh& mesh, int patch) {
+// With a motion: section the mesh velocity is the rigid-body velocity of the
+// moving grid, u_b = V + Omega x (x - c), in the earth frame the patch
+// geometry is placed in each step (the kinematic condition advects eta
+// relative to the moving mesh, docs/lfs-formulation.md section 3); the
+// beach scales with the motion's forward speed.
+std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, const Mesh& mesh, int patch,
+                                                           const RigidMeshMotion* motion) {
   n.ExpectKeys({"type", "g", "mesh_velocity", "advection", "beach", "waterline_patches", "pressure_patch",
                 "kinematic_courant"});
   LinearizedFreeSurfaceOptions o;
   if (n.Has("g")) o.g = n.GetPositive("g");
   Vector3 u_b = Vector3::Zero();
   if (n.Has("mesh_velocity")) {
+    if (motion) n["mesh_velocity"].Fail("no mesh_velocity: with a motion: section it is the motion's velocity");
     u_b = GetVector(n, "mesh_velocity");
     if (u_b.z() != 0.0) n["mesh_velocity"].Fail("an in-plane velocity [u, v, 0] (the free surface stays at z = 0)");
     o.mesh_velocity = [u_b](const Vector3&, double) { return u_b; };
+  } else if (motion) {
+    u_b = Vector3(motion->motion().options().speed, 0.0, 0.0);
+    o.mesh_velocity = [motion](const Vector3& x, double t) { return motion->PointVelocity(x, t); };
   }
   using Advection = LinearizedFreeSurfaceOptions::Advection;
   o.advection = GetEnum(n, "advection", o.advection,
@@ -251,7 +261,8 @@ std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, 
   }
 }
 
-std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, const Mesh& mesh, int patch) {
+std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, const Mesh& mesh, int patch,
+                                                          const RigidMeshMotion* motion) {
   const std::string type = n.Get<std::string>("type");
   if (type == "fixedValue") {
     n.ExpectKeys({"type", "value"});
@@ -279,7 +290,7 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, c
     if (!(f >= 0.0 && f <= 1.0)) n["fraction"].Fail("a value fraction in [0, 1]");
     return std::make_unique<Mixed<double>>(n.Get<double>("value", 0.0), n.Get<double>("gradient", 0.0), f);
   }
-  if (type == "linearizedFreeSurface") return LoadFreeSurface(n, mesh, patch);
+  if (type == "linearizedFreeSurface") return LoadFreeSurface(n, mesh, patch, motion);
   n["type"].Fail("one of fixedValue, zeroGradient, outletInlet, farField, empty, mixed, linearizedFreeSurface");
 }
 
@@ -389,7 +400,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
     const ConfigNode pn = b[p.name];
     pn.ExpectKeys({"U", "p"});
     u_bcs.push_back(LoadVelocityBc(pn["U"], c.motion.get()));
-    p_bcs.push_back(LoadPressureBc(pn["p"], mesh, static_cast<int>(p_bcs.size())));
+    p_bcs.push_back(LoadPressureBc(pn["p"], mesh, static_cast<int>(p_bcs.size()), c.motion.get()));
     if (p_bcs.back()->type() == "linearizedFreeSurface" && u_bcs.back()->type() != "zeroGradient") {
       pn["U"]["type"].Fail("zeroGradient on a linearizedFreeSurface patch (its flux comes from the pressure equation)");
     }
