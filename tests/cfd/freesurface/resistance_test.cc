@@ -163,8 +163,8 @@ resistance:
 )";
 
 TEST(ResistanceCase, WritesCoefficientsConsistentWithItsForcesAndStops) {
-  const auto dir = testing::TempDir("resistance_case");
-  const auto file = testing::WriteCase(dir, "case.yaml", kCase);
+  kelvin::testing::ScopedTempDir tmp;
+  const auto file = testing::WriteCase(tmp.path(), kCase);
   RunOptions ro;
   ro.progress = false;
   const RunSummary run = RunCase(file, ro);
