@@ -67,7 +67,9 @@ TEST(WaveOutputs, LinearElevationIsReproducedAndOutsideIsNaN) {
   ASSERT_EQ(prof.x.size(), 10u);
   for (std::size_t k = 0; k < prof.x.size(); ++k) {
     EXPECT_NEAR(prof.eta[k], eta_of(Vector3(prof.x[k], prof.y[k], 0)), 1e-14);
-    if (k > 0 && (prof.y[k] >= 0) == (prof.y[k - 1] >= 0)) EXPECT_LE(prof.x[k - 1], prof.x[k]);
+    if (k > 0 && (prof.y[k] >= 0) == (prof.y[k - 1] >= 0)) {
+      EXPECT_LE(prof.x[k - 1], prof.x[k]);
+    }
   }
 }
 
@@ -106,7 +108,7 @@ TEST(SteadyConvergence, StopsWhereTheClosedFormSays) {
     std::vector<double> eta(eta0);
     for (double& e : eta) e *= 1 + B * std::exp(-t / tau2);
     c.Add(t, forces, eta);
-    if (t < W - 1e-12) {
+    if (t < W + dt - 1e-12) {  // the first sample is at t = dt
       EXPECT_TRUE(std::isnan(c.force_change()));
       EXPECT_FALSE(c.Converged());
       continue;
@@ -123,7 +125,7 @@ TEST(SteadyConvergence, StopsWhereTheClosedFormSays) {
     const double t = n * dt;
     const double ec = B * std::exp(-t / tau2) * std::expm1(W / tau2) / (1 + B * std::exp(-t / tau2));
     const double fc = A * std::exp(-t / tau) * std::expm1(W / tau) / (1 + A * std::exp(-t / tau));
-    if (t >= W - 1e-12 && ec < tol && fc < tol) {
+    if (t >= W + dt - 1e-12 && ec < tol && fc < tol) {
       expected = n;
       break;
     }
