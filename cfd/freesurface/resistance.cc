@@ -259,7 +259,10 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Pi
       summary += fmt::format(", Re = {:.4g}", speed_ * options_.length / options_.nu);
     }
   }
-  if (!options_.double_body.empty()) {
+  if (!options_.double_body.empty() && !std::filesystem::exists(options_.double_body)) {
+    summary += fmt::format("; no wave-making part: the double-body result {} does not exist (run it first)",
+                           options_.double_body.string());
+  } else if (!options_.double_body.empty()) {
     // The wave-making part by coefficients, C_W = C_P - C_P(double body), so
     // a double-body run at another speed of the same grid serves (C_P of the
     // double body changes only through the Reynolds number).
