@@ -294,6 +294,15 @@ std::vector<double> LinearizedFreeSurface::State() const {
 
 void LinearizedFreeSurface::SetState(std::span<const double> s) {
   const std::size_t n = eta_.size();
+  if (s.empty()) {
+    // A checkpoint of a run without the free surface on this patch (e.g.
+    // the double body): calm water, the next step starts the levels.
+    std::fill(eta_.begin(), eta_.end(), 0.0);
+    eta_old_.clear();
+    started_ = false;
+    armed_ = false;
+    return;
+  }
   if (s.size() != 3 + 3 * n) {
     throw DataFileError(
         fmt::format("free-surface state of patch '{}' has {} values; expected {} for {} faces",

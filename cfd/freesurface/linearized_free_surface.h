@@ -127,6 +127,8 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::string type() const override { return "linearizedFreeSurface"; }
   std::vector<std::pair<std::string, std::vector<double>>> FaceFields() const override;
   // [time, old levels, eta, eta^n, eta^{n-1}] (old levels padded with zeros).
+  // SetState of an empty state (the checkpoint of a run without the free
+  // surface, e.g. a converged double body) starts from calm water.
   std::vector<double> State() const override;
   void SetState(std::span<const double> state) override;
 

@@ -75,6 +75,16 @@ def run_case(kelvin, name, results):
         print(f"{name}: kelvin run exited with {rc} (see {out}/run.log)", file=sys.stderr)
 
 
+def failure(name, results):
+    """The divergence message of a run without a resistance.h5, if any."""
+    for log in (os.path.join(results, name, "run.log"), os.path.join(results, name + ".log")):
+        if os.path.isfile(log):
+            for line in open(log, errors="replace"):
+                if "diverged at step" in line:
+                    return line.strip().replace("kelvin: ", "")
+    return None
+
+
 def read(name, results, grids):
     out = os.path.join(results, name)
     r = os.path.join(out, "resistance.h5")
@@ -108,8 +118,9 @@ def fmt(x, spec):
     return "n/a" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
 
 
-def section(rows):
+def section(rows, failed=None):
     by = {r["name"]: r for r in rows}
+    failed = failed or {}
     lines = [f"## LFS hull resistance (issue #6, acceptance 4 and 5)\n",
              f"Written by `tools/bench/lfs_resistance_bench.py` on {datetime.date.today()}; "
              "k-omega SST with wall functions, linearized free surface on `freeSurface`, relaxed PIMPLE "
@@ -123,7 +134,7 @@ def section(rows):
     for name, (fn, ct) in WIGLEY_EXP.items():
         r = by.get(name)
         if not r:
-            lines.append(f"| {fn} | | not run | {ct:.3e} | | | | | | | |")
+            lines.append(f"| {fn} | | {failed.get(name, 'not run')} | {ct:.3e} | | | | | | | |")
             continue
         ratio = r["C_T"] / ct
         lines.append(f"| {fn} | {fmt(r['Re'], '.3g')} | {r['C_T']:.4e} | {ct:.3e} | {ratio:.3f} | "
@@ -144,7 +155,7 @@ def section(rows):
         if r and name != "dtc_double_body" and math.isnan(r["C_W"]) and dtc_db:
             r["C_W"] = r["C_P"] - dtc_db["C_P"]  # C_W = C_P - C_P(double body), same grid and speed
         if not r:
-            lines.append(f"| {name} | not run | | | | | | | | |")
+            lines.append(f"| {name} | {failed.get(name, 'not run')} | | | | | | | | |")
             continue
         lines.append(f"| {name} | {r['co_max']:.0f} | {r['R_T']:.3f} | {r['R_T'] / DTC_RT_EXP:.3f} | "
                      f"{r['R_F']:.3f} | {r['R_P']:.3f} | {r['C_T']:.4e} | {fmt(r['C_W'], '.3e')} | "
@@ -191,7 +202,8 @@ def main():
         for n in names:
             run_case(args.kelvin, n, args.results)
     rows = [r for r in (read(n, args.results, args.grids) for n in ORDER) if r]
-    text = section(rows)
+    failed = {n: failure(n, args.results) for n in ORDER}
+    text = section(rows, {n: m for n, m in failed.items() if m and n not in {r["name"] for r in rows}})
     print(text)
     if args.write:
         replace_section(args.output, NAME, text)

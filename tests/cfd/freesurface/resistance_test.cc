@@ -136,6 +136,20 @@ TEST(SteadyConvergence, StopsWhereTheClosedFormSays) {
   EXPECT_THROW(SteadyConvergence(W, 1.5), ConfigError);
 }
 
+TEST(FreeSurfaceRestart, AnEmptyStateStartsFromCalmWater) {
+  // A checkpoint of the double body has no free-surface state on the patch:
+  // restarting the free-surface run from it starts with eta = 0.
+  const Mesh mesh = BlockInBox();
+  LinearizedFreeSurface fs(mesh, mesh.FindPatch("zmax"), {});
+  std::vector<double> eta(fs.eta().size(), 0.01);
+  fs.SetEta(eta);
+  EXPECT_GT(fs.Volume(), 0.0);
+  fs.SetState({});
+  EXPECT_EQ(fs.Volume(), 0.0);
+  for (double e : fs.eta()) EXPECT_EQ(e, 0.0);
+  EXPECT_THROW(fs.SetState(std::vector<double>{1.0, 2.0}), DataFileError);
+}
+
 constexpr const char* kCase = R"(
 mesh:
   box: {min: [0, -2, -1], max: [6, 2, 0], cells: [12, 8, 2], obstacle: {min: [4, 3, 1], max: [7, 5, 2]}}
