@@ -196,6 +196,7 @@ def main():
     ap.add_argument("--report-only", action="store_true", help="only read existing results")
     ap.add_argument("--write", action="store_true", help="write the section into BENCHMARKS.md")
     ap.add_argument("--output", default=os.path.join(ROOT, "BENCHMARKS.md"))
+    ap.add_argument("--note", default=None, help="file with measured findings to append to the section")
     args = ap.parse_args()
     names = [n for n in args.cases.split(",") if n]
     if not args.report_only:
@@ -204,6 +205,8 @@ def main():
     rows = [r for r in (read(n, args.results, args.grids) for n in ORDER) if r]
     failed = {n: failure(n, args.results) for n in ORDER}
     text = section(rows, {n: m for n, m in failed.items() if m and n not in {r["name"] for r in rows}})
+    if args.note:
+        text += "\n" + open(args.note).read().strip() + "\n"
     print(text)
     if args.write:
         replace_section(args.output, NAME, text)
