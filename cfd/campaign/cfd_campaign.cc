@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -105,12 +106,24 @@ std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip
 
 // --- samples files -----------------------------------------------------------
 
+// Cost of a run so far, carried across resumes in the samples file: process
+// CPU time of the time steps (s), the largest Courant number and the cells
+// (the PMM cost benchmark reads them from result.h5).
+struct RunCost {
+  double cpu_seconds = 0.0;
+  double courant_max = 0.0;
+  double cells = 0.0;
+};
+
 void WriteSamples(const fs::path& path, const std::vector<CaptiveSample>& samples, int step,
-                  int steps) {
+                  int steps, const RunCost& cost) {
   data::H5Writer w(path);
   w.SetAttribute("/", "kind", "kelvin captive CFD run samples");
   w.SetAttribute("/", "step", static_cast<double>(step));
   w.SetAttribute("/", "steps", static_cast<double>(steps));
+  w.SetAttribute("/", "cpu_seconds", cost.cpu_seconds);
+  w.SetAttribute("/", "courant_max", cost.courant_max);
+  w.SetAttribute("/", "cells", cost.cells);
   WriteCaptiveHistory(w, samples);
   w.Commit();
 }
@@ -273,9 +286,16 @@ bool ExecuteJob(Context& ctx, Job& job) {
                            ctx.file.cfd.draft > 0 ? ctx.file.cfd.draft : ctx.ship.d,
                            job.cfd_motion.speed};
   std::vector<CaptiveSample> samples;
+  RunCost cost;
+  cost.cells = c->mesh->n_cells();
   if (fs::exists(checkpoint) && fs::exists(samples_file)) {
     ReadCheckpoint(checkpoint, *c->solver);
     samples = ReadSamples(samples_file, c->motion->motion());
+    const data::H5Reader previous(samples_file);
+    if (previous.HasAttribute("/", "cpu_seconds")) {
+      cost.cpu_seconds = previous.NumberAttribute("/", "cpu_seconds");
+      cost.courant_max = previous.NumberAttribute("/", "courant_max");
+    }
     const auto step = static_cast<std::size_t>(c->solver->step());
     if (samples.size() >= step) {
       samples.resize(step);  // the samples may run ahead of a checkpoint that was not written
@@ -291,7 +311,10 @@ bool ExecuteJob(Context& ctx, Job& job) {
   auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   while (solver.step() < job.steps) {
     if (ctx.budget > 0 && ctx.computed >= ctx.budget) return false;  // as if killed here
+    const std::clock_t cpu_before = std::clock();
     const StepSummary s = solver.Step(job.dt);
+    cost.cpu_seconds += static_cast<double>(std::clock() - cpu_before) / CLOCKS_PER_SEC;
+    cost.courant_max = std::max(cost.courant_max, s.courant_max);
     ++ctx.computed;
     if (!s.finite) {
       throw InputError(
@@ -303,13 +326,13 @@ bool ExecuteJob(Context& ctx, Job& job) {
     samples.push_back(MakeCaptiveSample(solver, *c->motion, hull, c->rho, nu, scales));
     job.step = solver.step();
     if (job.step % ctx.file.cfd.checkpoint_interval == 0 && job.step < job.steps) {
-      WriteSamples(samples_file, samples, job.step, job.steps);  // samples first, then the state
+      WriteSamples(samples_file, samples, job.step, job.steps, cost);  // samples first, then the state
       WriteCheckpoint(checkpoint, solver);
       WriteProgressFile(job, seconds());
     }
     if (ctx.report) ctx.report();
   }
-  WriteSamples(job.dir / "result.h5", samples, job.step, job.steps);
+  WriteSamples(job.dir / "result.h5", samples, job.step, job.steps, cost);
   WriteProgressFile(job, seconds());
   std::error_code ec;
   fs::remove(checkpoint, ec);

@@ -169,6 +169,20 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
     const bool second_order = options_.advection != Advection::kUpwind;
     const bool quick = options_.advection == Advection::kQuick;
     if (second_order) surface_.Gradient(eta_, grad_);
+    // Local range of eta (face and edge neighbours) for the limiter.
+    const bool limit = second_order && options_.limit_advection;
+    if (limit) {
+      eta_min_.assign(eta_.begin(), eta_.end());
+      eta_max_.assign(eta_.begin(), eta_.end());
+      for (const auto& edge : edges) {
+        if (edge.neighbour < 0) continue;
+        const int a = edge.face, b = edge.neighbour;
+        eta_min_[a] = std::min(eta_min_[a], eta_[b]);
+        eta_max_[a] = std::max(eta_max_[a], eta_[b]);
+        eta_min_[b] = std::min(eta_min_[b], eta_[a]);
+        eta_max_[b] = std::max(eta_max_[b], eta_[a]);
+      }
+    }
     auto area = [&](int i) { return surface_.areas()[i]; };
     // High-order correction eta_e - eta_up on edge e from the upwind face u
     // (lagged iterate), or 0 (first order) where u has no gradient or the
@@ -176,7 +190,7 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
     // eta_u + grad_u . (x_e - x_u). QUICK: the mean of that and the linear
     // interpolation between u and the downwind face d (d < 0 on the rim:
     // linear upwind).
-    auto correction = [&](std::size_t e, int u, int d, double q_out_of_u) {
+    auto unlimited = [&](std::size_t e, int u, int d, double q_out_of_u) {
       if (!second_order || !surface_.valid_gradient(u)) return 0.0;
       const double q_at_u = -options_.mesh_velocity(surface_.centres()[u], t).dot(edges[e].normal);
       if (q_at_u * q_out_of_u <= 0.0) return 0.0;
@@ -186,6 +200,11 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
       const double to_d = (surface_.centres()[d] - edges[e].centre).norm();
       const double linear = to_u / (to_u + to_d) * (eta_[d] - eta_[u]);
       return 0.5 * (lud + linear);
+    };
+    auto correction = [&](std::size_t e, int u, int d, double q_out_of_u) {
+      const double c = unlimited(e, u, d, q_out_of_u);
+      if (!limit) return c;
+      return std::clamp(eta_[u] + c, eta_min_[u], eta_max_[u]) - eta_[u];
     };
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const auto& edge = edges[e];
@@ -275,6 +294,15 @@ std::vector<double> LinearizedFreeSurface::State() const {
 
 void LinearizedFreeSurface::SetState(std::span<const double> s) {
   const std::size_t n = eta_.size();
+  if (s.empty()) {
+    // A checkpoint of a run without the free surface on this patch (e.g.
+    // the double body): calm water, the next step starts the levels.
+    std::fill(eta_.begin(), eta_.end(), 0.0);
+    eta_old_.clear();
+    started_ = false;
+    armed_ = false;
+    return;
+  }
   if (s.size() != 3 + 3 * n) {
     throw DataFileError(
         fmt::format("free-surface state of patch '{}' has {} values; expected {} for {} faces",

@@ -78,6 +78,14 @@ struct LinearizedFreeSurfaceOptions {
   // order where the advection direction reverses.
   enum class Advection { kUpwind, kLinearUpwind, kQuick };
   Advection advection = Advection::kLinearUpwind;
+  // Clips the high-order face value of the linear-upwind and QUICK schemes
+  // to the range of eta over the upwind face and its edge neighbours (a
+  // Barth-Jespersen-type limiter). Needed on hull grids, whose faces next to
+  // the waterline are stretched along the hull (aspect ratios above 100):
+  // there the least-squares gradient extrapolates far outside the local
+  // range and the unlimited correction diverges within a few steps. Off by
+  // default (the Kelvin-pattern results were measured without it).
+  bool limit_advection = false;
   // Patches across which eta is extrapolated at inflow edges (the hull
   // waterline, where the pattern leaves the hull). On every other inflow
   // edge of the patch rim eta = 0 (undisturbed water comes in).
@@ -119,6 +127,8 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::string type() const override { return "linearizedFreeSurface"; }
   std::vector<std::pair<std::string, std::vector<double>>> FaceFields() const override;
   // [time, old levels, eta, eta^n, eta^{n-1}] (old levels padded with zeros).
+  // SetState of an empty state (the checkpoint of a run without the free
+  // surface, e.g. a converged double body) starts from calm water.
   std::vector<double> State() const override;
   void SetState(std::span<const double> state) override;
 
@@ -156,6 +166,7 @@ class LinearizedFreeSurface : public Mixed<double> {
   // Scratch.
   std::vector<Vector3> grad_;
   std::vector<double> edge_flux_;
+  std::vector<double> eta_min_, eta_max_;  // limiter range per face
 };
 
 }  // namespace kelvin::cfd

@@ -230,7 +230,8 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
     sections = std::make_unique<WigleySections>(c.wigley_length, c.wigley_beam, c.wigley_draft);
     length = c.wigley_length;
   } else {
-    const HullPlacement placement = LoadHullPlacement(c.ship_file);
+    HullPlacement placement = LoadHullPlacement(c.ship_file);
+    if (!c.hull_file.empty()) placement.file = c.hull_file;
     surface = LoadHull(placement);
     if (c.method == MeshMethod::kStructured) sections = std::make_unique<SurfaceSections>(surface);
   }

@@ -43,6 +43,9 @@ struct MeshCase {
   bool wigley = false;
   double wigley_length = 0, wigley_beam = 0, wigley_draft = 0;  // m
   std::filesystem::path ship_file;
+  // Replaces the ship file's geometry.file when set (`kelvin mesh --hull`):
+  // hulls the project cannot ship, such as the KCS, come from the user.
+  std::filesystem::path hull_file;
   double reynolds = 0;
   double y_plus = 1.0;
   HullGridOptions structured;  // domain, reynolds and y_plus filled in

@@ -11,6 +11,7 @@
 
 #include "cfd/bc/outlet_inlet.h"
 #include "cfd/freesurface/linearized_free_surface.h"
+#include "cfd/freesurface/resistance.h"
 #include "cfd/io/checkpoint.h"
 #include "cfd/io/vtu_writer.h"
 #include "cfd/mesh/box_mesh.h"
@@ -176,17 +177,28 @@ std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n, 
 }
 
 // p: {type: linearizedFreeSurface, g, mesh_velocity, advection, beach: {width, strength, sides},
-// waterline_patches, pressure_patch: {centre, radius, head}, kinematic_courant} on a patch in z = 0 (see cfd/freesurface/linearized_free_surface.h).
-std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, const Mesh& mesh, int patch) {
+// waterline_patches, pressure_patch: {centre, radius, head}, kinematic_courant, limit_advection} on a patch in z = 0 (see cfd/freesurface/linearized_free_surface.h).
+// With a motion: section the mesh velocity is the rigid-body velocity of the
+// moving grid, u_b = V + Omega x (x - c), in the earth frame the patch
+// geometry is placed in each step (the kinematic condition advects eta
+// relative to the moving mesh, docs/lfs-formulation.md section 3); the
+// beach scales with the motion's forward speed.
+std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, const Mesh& mesh, int patch,
+                                                           const RigidMeshMotion* motion) {
   n.ExpectKeys({"type", "g", "mesh_velocity", "advection", "beach", "waterline_patches", "pressure_patch",
-                "kinematic_courant"});
+                "kinematic_courant", "limit_advection"});
   LinearizedFreeSurfaceOptions o;
+  o.limit_advection = n.Get<bool>("limit_advection", false);
   if (n.Has("g")) o.g = n.GetPositive("g");
   Vector3 u_b = Vector3::Zero();
   if (n.Has("mesh_velocity")) {
+    if (motion) n["mesh_velocity"].Fail("no mesh_velocity: with a motion: section it is the motion's velocity");
     u_b = GetVector(n, "mesh_velocity");
     if (u_b.z() != 0.0) n["mesh_velocity"].Fail("an in-plane velocity [u, v, 0] (the free surface stays at z = 0)");
     o.mesh_velocity = [u_b](const Vector3&, double) { return u_b; };
+  } else if (motion) {
+    u_b = Vector3(motion->motion().options().speed, 0.0, 0.0);
+    o.mesh_velocity = [motion](const Vector3& x, double t) { return motion->PointVelocity(x, t); };
   }
   using Advection = LinearizedFreeSurfaceOptions::Advection;
   o.advection = GetEnum(n, "advection", o.advection,
@@ -251,7 +263,8 @@ std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, 
   }
 }
 
-std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, const Mesh& mesh, int patch) {
+std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, const Mesh& mesh, int patch,
+                                                          const RigidMeshMotion* motion) {
   const std::string type = n.Get<std::string>("type");
   if (type == "fixedValue") {
     n.ExpectKeys({"type", "value"});
@@ -279,14 +292,15 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, c
     if (!(f >= 0.0 && f <= 1.0)) n["fraction"].Fail("a value fraction in [0, 1]");
     return std::make_unique<Mixed<double>>(n.Get<double>("value", 0.0), n.Get<double>("gradient", 0.0), f);
   }
-  if (type == "linearizedFreeSurface") return LoadFreeSurface(n, mesh, patch);
+  if (type == "linearizedFreeSurface") return LoadFreeSurface(n, mesh, patch, motion);
   n["type"].Fail("one of fixedValue, zeroGradient, outletInlet, farField, empty, mixed, linearizedFreeSurface");
 }
 
 }  // namespace
 
 Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverrides& overrides) {
-  root.ExpectKeys({"mesh", "physics", "schemes", "solution", "time", "boundary", "output", "motion", "turbulence"});
+  root.ExpectKeys(
+      {"mesh", "physics", "schemes", "solution", "time", "boundary", "output", "motion", "turbulence", "resistance"});
   Case c;
   c.mesh = LoadMesh(root["mesh"], case_dir);
   const Mesh& mesh = *c.mesh;
@@ -389,7 +403,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
     const ConfigNode pn = b[p.name];
     pn.ExpectKeys({"U", "p"});
     u_bcs.push_back(LoadVelocityBc(pn["U"], c.motion.get()));
-    p_bcs.push_back(LoadPressureBc(pn["p"], mesh, static_cast<int>(p_bcs.size())));
+    p_bcs.push_back(LoadPressureBc(pn["p"], mesh, static_cast<int>(p_bcs.size()), c.motion.get()));
     if (p_bcs.back()->type() == "linearizedFreeSurface" && u_bcs.back()->type() != "zeroGradient") {
       pn["U"]["type"].Fail("zeroGradient on a linearizedFreeSurface patch (its flux comes from the pressure equation)");
     }
@@ -511,6 +525,13 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   RunSummary summary;
   summary.output_directory = c.output_directory;
   if (!options.restart.empty()) ReadCheckpoint(options.restart, solver);
+  // Steady resistance (the `resistance:` section): uniform start, time-step
+  // ramp, convergence stop and resistance.h5 (cfd/freesurface/resistance.h).
+  std::unique_ptr<ResistanceMonitor> resistance;
+  if (root.Has("resistance")) {
+    resistance = LoadResistance(root["resistance"], solver, root["physics"], case_file.parent_path());
+    resistance->Start(solver, !options.restart.empty());
+  }
 
   std::vector<std::vector<double>> history;  // rows: time, Co, resU, resp, continuity, forces...
   std::vector<CaptiveSample> captive_rows;      // ship-axis loads (motion with output.captive)
@@ -622,7 +643,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   for (int i = 0; i < total_steps; ++i) {
-    const StepSummary s = solver.Step(c.dt);
+    const StepSummary s = solver.Step(resistance ? resistance->TimeStep(i, c.dt) : c.dt);
     summary.outer_iterations += s.outer_iterations;
     ++summary.steps;
     if (!s.finite) {
@@ -645,12 +666,17 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       for (int d = 0; d < 3; ++d) row.push_back(fv[d]);
     }
     history.push_back(std::move(row));
+    bool converged = false;
+    if (resistance) {
+      const auto [fp, fv] = PatchForce(solver, resistance->hull_patch(), c.rho, nu);
+      converged = resistance->Record(solver, fp, fv);
+    }
     if (c.motion && c.captive_length > 0.0) {
       captive_rows.push_back(MakeCaptiveSample(solver, *c.motion, force_patch_index, c.rho, nu,
                                             {c.rho, c.captive_length, c.captive_draft,
                                              c.motion->motion().options().speed}));
     }
-    const bool last = i + 1 == total_steps;
+    const bool last = i + 1 == total_steps || converged;
     if ((last && c.vtu_interval >= 0) || (c.vtu_interval > 0 && solver.step() % c.vtu_interval == 0)) {
       write_fields();
     }
@@ -672,6 +698,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     }
     progress.Update(i + 1, fmt::format("step {} t={:.4g} Co={:.3g} U={:.2e} p={:.2e}", s.step, s.time,
                                        s.courant_max, s.initial_residual_U, s.initial_residual_p));
+    if (converged) break;
   }
   if (!history.empty()) write_history();
   progress.Finish(summary.status == RunSummary::Status::kCompleted ? "done" : "diverged");
@@ -680,6 +707,9 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   if (summary.status == RunSummary::Status::kCompleted) {
     summary.message = fmt::format("completed {} steps to t = {:.6g} s; results in {}", summary.steps, summary.time,
                                   summary.output_directory.string());
+    if (resistance && summary.steps > 0) {
+      summary.message += "\n  " + resistance->Write(c.output_directory / "resistance.h5", solver);
+    }
     if (!wall_rows.empty()) {
       for (const WallPatchStats& w : wall_rows.back()) {
         summary.message += fmt::format("\n  y+ on {}: min {:.3g}, mean {:.3g}, max {:.3g}", w.patch, w.y_plus_min,

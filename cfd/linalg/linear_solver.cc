@@ -5,7 +5,7 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <cmath>
 
-#include "cfd/linalg/hypre_amg_solver.h"
+#include "cfd/linalg/hypre_solver.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -114,7 +114,8 @@ std::unique_ptr<LinearSolver> LinearSolver::Create(const LinearSolverOptions& op
     case LinearSolverOptions::Type::kCgJacobi:
       return std::make_unique<CgJacobi>(options);
     case LinearSolverOptions::Type::kPcgAmg:
-      return std::make_unique<HypreAmgSolver>(options);
+    case LinearSolverOptions::Type::kBiCgStabIlu:
+      return std::make_unique<HypreSolver>(options);
   }
   return nullptr;
 }

@@ -1,7 +1,8 @@
 // Linear solvers for the cell systems. Created from Options; each solve
 // reports a Summary. The pressure solver is CG preconditioned by hypre
-// BoomerAMG (see hypre_amg_solver.h); momentum and scalars use BiCGStab with
-// a Jacobi preconditioner (Eigen).
+// BoomerAMG (see hypre_solver.h); momentum and scalars use BiCGStab with
+// a Jacobi preconditioner (Eigen); the k and omega equations of SST use
+// hypre's BiCGStab with an ILU(0) preconditioner.
 #pragma once
 
 #include <memory>
@@ -29,7 +30,7 @@ struct AmgOptions {
 };
 
 struct LinearSolverOptions {
-  enum class Type { kBiCgStabJacobi, kCgJacobi, kPcgAmg };
+  enum class Type { kBiCgStabJacobi, kCgJacobi, kPcgAmg, kBiCgStabIlu };
   Type type = Type::kBiCgStabJacobi;
   double relative_tolerance = 1e-6;   // ||r||_2 / ||b||_2
   double absolute_tolerance = 1e-14;  // ||r||_2

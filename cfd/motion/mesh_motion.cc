@@ -65,6 +65,11 @@ MovingWall::Motion RigidMeshMotion::WallMotion(double t) const {
   return m;
 }
 
+Vector3 RigidMeshMotion::PointVelocity(const Vector3& x, double t) const {
+  const Pose pose = motion_.At(t);
+  return pose.Velocity() + pose.AngularVelocity().cross(x - CentreAt(pose));
+}
+
 void RigidMeshMotion::Attach(PimpleSolver& solver) const {
   solver.SetMeshMotion([this](double t, std::vector<double>& mesh_flux) { Apply(t, mesh_flux); });
 }

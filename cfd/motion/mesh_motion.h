@@ -35,6 +35,9 @@ class RigidMeshMotion {
   MovingWall::Motion WallMotion(double t) const;
   // Earth position (z-up frame) of the reference point at `pose`.
   Vector3 CentreAt(const Pose& pose) const;
+  // Rigid-body velocity u_b = V + Omega x (x - c) at the earth-frame point x
+  // (z-up frame) at time t.
+  Vector3 PointVelocity(const Vector3& x, double t) const;
 
   const RigidMotion& motion() const { return motion_; }
   const Mesh& mesh() const { return mesh_; }

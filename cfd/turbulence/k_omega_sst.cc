@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
 
 #include <algorithm>
 #include <cmath>
@@ -199,27 +199,23 @@ double KOmegaSst::Solve(ScalarField& field, FvMatrix<double>& m, int& bounded, d
   const Eigen::Map<const Eigen::VectorXd> b(source.data(), static_cast<Eigen::Index>(source.size()));
   const Eigen::VectorXd r0 = b - a * x;
   const double residual = NormalizedResidual(a, source, field.values());
-  // BiCGStab with Eigen's incomplete LU (threshold ILU, fill kept to the
-  // matrix's own density) on the correction, same tolerances as
-  // opt_.solver. The k and omega matrices are dominated by upwind
-  // convection at the large pseudo-time steps of steady runs; there an
-  // incomplete LU is close to exact, where Jacobi needs about as many
+  // BiCGStab with an ILU(0) preconditioner (hypre) on the correction, same
+  // tolerances as opt_.solver. The k and omega matrices are dominated by
+  // upwind convection at the large pseudo-time steps of steady runs; there
+  // an incomplete LU is close to exact, where Jacobi needs about as many
   // iterations as there are cells along a streamline.
-  const double r0_norm = r0.norm();
-  Eigen::VectorXd dx = Eigen::VectorXd::Zero(r0.size());
-  SolverSummary s;
-  if (r0_norm > 0.0) {
-    Eigen::BiCGSTAB<CsrMatrix, Eigen::IncompleteLUT<double, int>> bicgstab;
-    bicgstab.preconditioner().setFillfactor(1);
-    bicgstab.preconditioner().setDroptol(1e-2);
-    bicgstab.setMaxIterations(opt_.solver.max_iterations);
-    bicgstab.setTolerance(std::max(opt_.solver.relative_tolerance, opt_.solver.absolute_tolerance / r0_norm));
-    bicgstab.compute(a);
-    dx = bicgstab.solveWithGuess(r0, dx);
-    s.iterations = static_cast<int>(bicgstab.iterations());
+  std::unique_ptr<LinearSolver>& solver = &field == k_.get() ? k_solver_ : omega_solver_;
+  if (!solver) {
+    LinearSolverOptions o = opt_.solver;
+    o.type = LinearSolverOptions::Type::kBiCgStabIlu;
+    solver = LinearSolver::Create(o);
   }
-  for (Eigen::Index c = 0; c < dx.size(); ++c) field.values()[c] += dx[c];
-  iterations += s.iterations;
+  std::vector<double> dx(r0.size(), 0.0);
+  if (r0.norm() > 0.0) {
+    const SolverSummary s = solver->Solve(a, std::span<const double>(r0.data(), r0.size()), dx);
+    iterations += s.iterations;
+  }
+  for (std::size_t c = 0; c < dx.size(); ++c) field.values()[c] += dx[c];
   for (double& v : field.values()) {
     if (!(v >= floor)) {
       if (std::isfinite(v)) {

@@ -85,8 +85,8 @@ struct KOmegaSstOptions {
   // (I = 1%, nu_t/nu = 1-10) the ambient omega exceeds the outer
   // boundary-layer omega of model-scale plates and damps it.
   bool sustain = false;
-  // Tolerances and iteration limit of the k and omega solves (BiCGStab
-  // with an incomplete-LU preconditioner; the type field is not used).
+  // Tolerances and iteration limit of the k and omega solves (hypre
+  // BiCGStab with an ILU(0) preconditioner; the type field is not used).
   LinearSolverOptions solver;
   void Validate() const;
 };
@@ -118,6 +118,7 @@ class KOmegaSst : public TurbulenceModel {
   ScalarField& omega() { return *omega_; }
   const std::vector<double>& wall_distance() const { return y_; }
   const std::vector<double>& F1() const { return F1_; }
+  const std::vector<double>& strain_rate_squared() const { return S2_; }  // 2 S_ij S_ij
 
  private:
   // Wall shear, y+, u_tau per wall face and the wall-cell omega, from U.
@@ -145,6 +146,7 @@ class KOmegaSst : public TurbulenceModel {
   NonOrthGeometry geo_;
   Gradient grad_;
   SparseSystem system_;
+  std::unique_ptr<LinearSolver> k_solver_, omega_solver_;
   double k_floor_ = 0.0, omega_floor_ = 0.0;
   bool initialized_ = false;
 };

@@ -320,6 +320,10 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
     if (model) {
       r.nut_plus.push_back(model->nu_t()[c] / nu);
       r.k_plus.push_back(model->k()[c] / (u_tau * u_tau));
+      r.f1.push_back(model->F1()[c]);
+      r.nut_unlimited_plus.push_back(model->k()[c] / model->omega()[c] / nu);
+      r.omega_plus.push_back(model->omega()[c] * nu / (u_tau * u_tau));
+      r.strain_plus.push_back(std::sqrt(model->strain_rate_squared()[c]) * nu / (u_tau * u_tau));
     }
   }
   return r;

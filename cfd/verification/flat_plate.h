@@ -86,6 +86,12 @@ struct FlatPlateResult {
   double x_profile = 0.0;
   std::vector<double> y_plus, u_plus;
   std::vector<double> nut_plus, k_plus;  // nu_t / nu and k / u_tau^2 on the same cells (SST runs)
+  // SST blending function F1 and (k / omega) / nu, the eddy viscosity without
+  // the strain limiter, on the same cells (SST runs).
+  std::vector<double> f1, nut_unlimited_plus;
+  // omega nu / u_tau^2 and sqrt(2 S_ij S_ij) nu / u_tau^2 (log layer:
+  // 1 / (sqrt(beta*) kappa y+) and 1 / (kappa y+)).
+  std::vector<double> omega_plus, strain_plus;
 };
 
 // Runs the plate to a steady state by pseudo-transient marching (PIMPLE

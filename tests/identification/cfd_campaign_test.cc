@@ -110,6 +110,14 @@ TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
   EXPECT_EQ(b1.steps_computed + b2.steps_computed + b3.steps_computed, a.steps_computed + 8);
   EXPECT_LT(b3.steps_computed, a.steps_computed - 200);
   ExpectSameFile(a.output, b3.output);
+  // Each run's result.h5 carries its cost (CPU time of its steps, largest
+  // Courant number, cells), across the resumes too.
+  for (const char* run : {"drift_+0.0deg", "drift_+5.0deg"}) {
+    const data::H5Reader r(tmp / "killed/runs" / run / "result.h5");
+    EXPECT_GT(r.NumberAttribute("/", "cpu_seconds"), 0.0) << run;
+    EXPECT_GT(r.NumberAttribute("/", "courant_max"), 0.0) << run;
+    EXPECT_GT(r.NumberAttribute("/", "cells"), 100.0) << run;
+  }
   // Nothing left to do: a rerun only rewrites the campaign file.
   EXPECT_EQ(RunCfdCampaign(killed, Quiet()).steps_computed, 0);
   ExpectSameFile(a.output, b3.output);

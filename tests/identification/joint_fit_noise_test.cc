@@ -4,6 +4,7 @@
 // 20:37-52, Tables 1-3, as stored in data/ships/kvlcc2.yaml.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "identification/joint_fit.h"
@@ -23,12 +24,21 @@ using fixtures::StandardCampaign;
 // Acceptance 2: 5% Gaussian noise (of each run's channel RMS), 20 seeds. All
 // 20 coefficients are kept free (fix_unidentifiable = false) so that every
 // reported standard error is tested.
+//
+// The first clause of the acceptance ("every recovered derivative lies within
+// 3 reported standard errors of the truth") is a statement about one noisy
+// campaign: it is asserted for the campaign of seed 1, the seed the loop
+// starts from (chosen before any result was seen). Over all 20 seeds it is a
+// coverage statement: a calibrated Gaussian estimate leaves 3 sigma with
+// probability 0.27%, so about one of the 400 estimates is expected outside,
+// and the count is bounded below.
 TEST(JointFitNoiseTest, NoiseStandardErrorsMatchEmpiricalSpreadOverTwentySeeds) {
   const sim::ShipParameters ship = Kvlcc2();
   const CaptiveCampaign clean = StandardCampaign(ship, true);
   constexpr int kSeeds = 20;
   std::array<std::vector<double>, kCoefficientCount> estimate, std_error;
   int outside3 = 0, outside4 = 0;
+  double first_campaign_worst_z = 0;
   for (int seed = 1; seed <= kSeeds; ++seed) {
     CaptiveCampaign c = clean;
     AddForceNoise(c, 0.05, static_cast<std::uint64_t>(seed));
@@ -42,6 +52,7 @@ TEST(JointFitNoiseTest, NoiseStandardErrorsMatchEmpiricalSpreadOverTwentySeeds) 
       estimate[i].push_back(fit.coefficients[i]);
       std_error[i].push_back(se);
       const double z = std::abs(fit.coefficients[i] - ship.hull[i]) / se;
+      if (seed == 1) first_campaign_worst_z = std::max(first_campaign_worst_z, z);
       if (z > 3) {
         ++outside3;
         std::printf("seed %d: %s is %.2f standard errors from the truth\n", seed,
@@ -53,6 +64,9 @@ TEST(JointFitNoiseTest, NoiseStandardErrorsMatchEmpiricalSpreadOverTwentySeeds) 
   // With calibrated standard errors 0.27% of the 400 estimates fall outside
   // 3 sigma (1.1 expected; P(more than 4) = 0.005), and 4 sigma essentially
   // never (P = 6e-5 each).
+  std::printf("seed 1: worst estimate %.2f standard errors from the truth\n",
+              first_campaign_worst_z);
+  EXPECT_LE(first_campaign_worst_z, 3.0);
   EXPECT_LE(outside3, 4);
   EXPECT_EQ(outside4, 0);
   for (int i = 0; i < kCoefficientCount; ++i) {

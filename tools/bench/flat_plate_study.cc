@@ -73,9 +73,20 @@ int main(int argc, char** argv) {
     }
     if (profile) {
       for (std::size_t i = 0; i < res.y_plus.size() && res.y_plus[i] < 3000; ++i) {
-        fmt::print("  y+ {:9.2f} u+ {:7.3f} log law (B 5.0-5.2) {:7.3f}-{:7.3f}  nu_t/nu {:9.2f}\n", res.y_plus[i],
+        const bool sst = !res.nut_plus.empty();
+        fmt::print("  y+ {:9.2f} u+ {:7.3f} log law (B 5.0-5.2) {:7.3f}-{:7.3f}  nu_t/nu {:9.2f}", res.y_plus[i],
                    res.u_plus[i], std::log(res.y_plus[i]) / 0.41 + 5.0, std::log(res.y_plus[i]) / 0.41 + 5.2,
-                   res.nut_plus.empty() ? 0.0 : res.nut_plus[i]);
+                   sst ? res.nut_plus[i] : 0.0);
+        if (sst) {
+          // nu_t / (kappa u_tau y) is 1 in a log layer with kappa = 0.41.
+          fmt::print("  nu_t/(0.41 y+ nu) {:6.3f}  (k/omega)/nu {:9.2f}  F1 {:6.4f}", res.nut_plus[i] / (0.41 * res.y_plus[i]),
+                     res.nut_unlimited_plus[i], res.f1[i]);
+          // Log-layer values of the k-omega model are k+ = 1/sqrt(beta*),
+          // omega+ y+ = 1/(sqrt(beta*) kappa) and S+ y+ = 1/kappa.
+          fmt::print("  k+ {:6.3f} omega+ y+ {:6.3f} S+ y+ {:6.3f}", res.k_plus[i], res.omega_plus[i] * res.y_plus[i],
+                     res.strain_plus[i] * res.y_plus[i]);
+        }
+        fmt::print("\n");
       }
     }
     if (cf) {

@@ -207,6 +207,7 @@ def main():
     ap.add_argument("--output", default="BENCHMARKS.md")
     ap.add_argument("--work", default=None, help="work directory (default: a temporary one)")
     args = ap.parse_args()
+    load_at_start = os.getloadavg()[0]
     if not os.path.exists("/usr/share/openfoam/etc/bashrc"):
         sys.exit("OpenFOAM is not installed (Debian package 'openfoam'; run tools/setup)")
     if args.skip < 1 or args.steps <= args.skip + 1:
@@ -239,7 +240,8 @@ def main():
     text = f"""## k-omega SST cost over laminar: kelvin vs OpenFOAM pimpleFoam (flat plate)
 
 Run by `tools/bench/sst_cost_bench.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC, {cpu_name}, one core each,
-the four runs one after the other. The machine is shared, so only the ratios measured in this one run are meaningful.
+the four runs one after the other. The machine is shared (1-minute load average {load_at_start:.1f} when the runs
+started on its 2 cores), so only the ratios measured in this one run are meaningful.
 
 Case: zero-pressure-gradient flat plate of `cfd/verification/flat_plate.h`, Re_L = {args.re:.3g}, wall-function grid
 (first-cell y+ target {args.y_plus:g}), {args.cells_x} x {args.cells_y} cells on the plate side plus the run-up:
@@ -248,7 +250,7 @@ pimpleFoam, so both run the same mesh. {args.steps} pseudo-time steps of dt = {d
 cell at L/2), each one PIMPLE outer iteration with 2 pressure correctors, implicit relaxation U 0.7, p 0.3; Euler,
 Gauss linear gradients, linear-upwind U, upwind k and omega, corrected Laplacian. Pressure: kelvin CG + BoomerAMG,
 pimpleFoam GAMG; relative tolerance 1e-4, 1e-6 in the final corrector. U, k, omega: BiCGStab, relative tolerance
-1e-6 (kelvin: Jacobi for U, Eigen's threshold incomplete LU (IncompleteLUT, fill factor 1, drop tolerance 1e-2) for the k and omega corrections; pimpleFoam: DILU). Turbulence: kelvin's KOmegaSst (wall functions, correction-form k and
+1e-6 (kelvin: Jacobi for U, hypre's BiCGStab with ILU(0) (no reordering) for the k and omega corrections; pimpleFoam: DILU). Turbulence: kelvin's KOmegaSst (wall functions, correction-form k and
 omega solves), pimpleFoam kOmegaSST with nutkWallFunction / omegaWallFunction / kqRWallFunction on the plate; inflow
 I = {args.intensity:g}, nu_t/nu = {args.viscosity_ratio:g} in both. OpenFOAM {fs['build']}.
 The first {args.skip} steps are excluded; times per outer iteration are wall-clock (kelvin: per-step clock in

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cfd/grid/mesh_case.h"
+#include "data/schema/errors.h"
 #include "tools/kelvin/commands.h"
 
 namespace kelvin::cli {
@@ -17,10 +18,18 @@ struct MeshArgs {
   std::string case_file;
   int family = 1;
   std::string output;
+  std::string hull;
 };
 
 void RunMesh(const MeshArgs& a) {
-  const cfd::MeshCase c = cfd::LoadMeshCase(a.case_file);
+  cfd::MeshCase c = cfd::LoadMeshCase(a.case_file);
+  if (!a.hull.empty()) {
+    if (c.wigley) {
+      throw ArgumentError(fmt::format("--hull {}: the mesh case {} uses the Wigley formula, not a ship file", a.hull,
+                                    a.case_file));
+    }
+    c.hull_file = a.hull;
+  }
   const auto grids = cfd::RunMeshCase(c, a.family, a.output);
   for (const auto& g : grids) {
     fmt::print("grid {}: {}\n{}\n", g.level, g.directory.string(), g.report);
@@ -47,6 +56,10 @@ Command AddMeshCommand(CLI::App& app) {
       ->check(CLI::Range(1, 6))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output directory (overrides output.directory)");
+  cmd->add_option("--hull", args->hull,
+                  "Hull surface (STL/OBJ, gzip) replacing geometry.file of the case's ship file, placed by that "
+                  "file's geometry section (e.g. a user-supplied KCS hull)")
+      ->check(CLI::ExistingFile);
   return {cmd, [args] { RunMesh(*args); }};
 }
 

@@ -84,6 +84,37 @@ geometry: {file: wigley.stl, length_unit: 0.001, x_ap: 0.0, waterline_z: 0.15625
   EXPECT_LT(mesh.Quality().max_non_orthogonality, 60.0);
 }
 
+// --hull: a hull the project cannot ship (the KCS) comes from the user and
+// replaces the ship file's geometry.file; without it the missing file is
+// one clear error, and a Wigley-formula case has no hull file to replace.
+TEST(MeshCliTest, HullOptionReplacesTheShipFilesSurface) {
+  ScopedTempDir dir;
+  cfd::WriteStl(cfd::WigleySurface(2.5, 0.25, 0.15625, 0.05, 240, 48), dir / "user_hull.stl");
+  Write(dir / "ship.yaml", R"(ship: {name: Wigley}
+principal: {Lpp: 2.5, B: 0.25, d: 0.15625, nu: 1.0e-6}
+geometry: {file: not-shipped.stl, length_unit: 1.0, x_ap: 0.0, waterline_z: 0.0, bow_direction: "+x"}
+)");
+  std::string text = kCase;
+  text.replace(text.find("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}"),
+               std::string("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}").size(), "    ship: ship.yaml");
+  text.replace(text.find("flow: {speed: 2.0, viscosity: 1.0e-6}"),
+               std::string("flow: {speed: 2.0, viscosity: 1.0e-6}").size(), "flow: {speed: 2.0}");
+  Write(dir / "case.yaml", text);
+  const auto missing = RunCommand(Kelvin() + " mesh " + (dir / "case.yaml").string());
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_THAT(missing.output, HasSubstr("not-shipped.stl"));
+  const auto r = RunCommand(Kelvin() + " mesh " + (dir / "case.yaml").string() + " --hull " +
+                            (dir / "user_hull.stl").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const cfd::Mesh mesh = cfd::ReadPolyMesh(dir / "grids/constant/polyMesh");
+  EXPECT_NEAR(cfd::HullPatchVolume(mesh) / (4.0 / 9.0 * 2.5 * 0.25 * 0.15625), 1.0, 0.01);
+  Write(dir / "wigley.yaml", kCase);
+  const auto w = RunCommand(Kelvin() + " mesh " + (dir / "wigley.yaml").string() + " --hull " +
+                            (dir / "user_hull.stl").string());
+  EXPECT_NE(w.exit_code, 0) << w.output;
+  EXPECT_THAT(w.output, HasSubstr("uses the Wigley formula"));
+}
+
 TEST(MeshCliTest, BadCaseFileExitsWithOneMessage) {
   ScopedTempDir dir;
   std::string text = kCase;

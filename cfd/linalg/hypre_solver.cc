@@ -1,4 +1,4 @@
-#include "cfd/linalg/hypre_amg_solver.h"
+#include "cfd/linalg/hypre_solver.h"
 
 #include <HYPRE.h>
 #include <HYPRE_krylov.h>
@@ -36,7 +36,7 @@ void EnsureMpi() {
   }
 }
 
-struct HypreAmgSolver::Impl {
+struct HypreSolver::Impl {
   int n = 0;
   HYPRE_IJMatrix ij_a = nullptr;
   HYPRE_IJVector ij_b = nullptr;
@@ -44,30 +44,42 @@ struct HypreAmgSolver::Impl {
   HYPRE_ParCSRMatrix a = nullptr;
   HYPRE_ParVector b = nullptr;
   HYPRE_ParVector x = nullptr;
-  HYPRE_Solver pcg = nullptr;
-  HYPRE_Solver amg = nullptr;
+  HYPRE_Solver krylov = nullptr;  // PCG or BiCGStab
+  HYPRE_Solver precond = nullptr;  // BoomerAMG or ILU
   std::vector<HYPRE_Int> rows, ncols, row_index;
   bool has_setup = false;
 };
 
-HypreAmgSolver::HypreAmgSolver(const LinearSolverOptions& options) : options_(options) {
+HypreSolver::HypreSolver(const LinearSolverOptions& options) : options_(options) {
   options_.Validate();
   EnsureMpi();
 }
 
-HypreAmgSolver::~HypreAmgSolver() { Destroy(); }
+HypreSolver::~HypreSolver() { Destroy(); }
 
-void HypreAmgSolver::Destroy() {
+void HypreSolver::Destroy() {
   if (!impl_) return;
-  if (impl_->pcg) HYPRE_ParCSRPCGDestroy(impl_->pcg);
-  if (impl_->amg) HYPRE_BoomerAMGDestroy(impl_->amg);
+  if (impl_->krylov) {
+    if (Amg()) {
+      HYPRE_ParCSRPCGDestroy(impl_->krylov);
+    } else {
+      HYPRE_ParCSRBiCGSTABDestroy(impl_->krylov);
+    }
+  }
+  if (impl_->precond) {
+    if (Amg()) {
+      HYPRE_BoomerAMGDestroy(impl_->precond);
+    } else {
+      HYPRE_ILUDestroy(impl_->precond);
+    }
+  }
   if (impl_->ij_a) HYPRE_IJMatrixDestroy(impl_->ij_a);
   if (impl_->ij_b) HYPRE_IJVectorDestroy(impl_->ij_b);
   if (impl_->ij_x) HYPRE_IJVectorDestroy(impl_->ij_x);
   impl_.reset();
 }
 
-void HypreAmgSolver::Create(const CsrMatrix& a) {
+void HypreSolver::Create(const CsrMatrix& a) {
   Destroy();
   impl_ = std::make_unique<Impl>();
   Impl& s = *impl_;
@@ -104,39 +116,72 @@ void HypreAmgSolver::Create(const CsrMatrix& a) {
   HYPRE_IJVectorGetObject(s.ij_x, &obj);
   s.x = static_cast<HYPRE_ParVector>(obj);
 
-  const AmgOptions& amg = options_.amg;
-  HYPRE_BoomerAMGCreate(&s.amg);
-  HYPRE_BoomerAMGSetCoarsenType(s.amg, 10);  // HMIS
-  HYPRE_BoomerAMGSetInterpType(s.amg, 6);    // extended+i
-  HYPRE_BoomerAMGSetPMaxElmts(s.amg, amg.interp_max_elements);
-  HYPRE_BoomerAMGSetAggNumLevels(s.amg, amg.aggressive_levels);
-  HYPRE_BoomerAMGSetAggInterpType(s.amg, 4);  // multipass on aggressive levels
-  HYPRE_BoomerAMGSetStrongThreshold(s.amg, amg.strong_threshold);
-  HYPRE_BoomerAMGSetCycleRelaxType(s.amg, 13, 1);  // l1-Gauss-Seidel forward, down
-  HYPRE_BoomerAMGSetCycleRelaxType(s.amg, 14, 2);  // l1-Gauss-Seidel backward, up
-  HYPRE_BoomerAMGSetCycleRelaxType(s.amg, 9, 3);   // Gaussian elimination, coarsest
-  HYPRE_BoomerAMGSetNumSweeps(s.amg, 1);
-  HYPRE_BoomerAMGSetMaxIter(s.amg, 1);
-  HYPRE_BoomerAMGSetTol(s.amg, 0.0);
-  HYPRE_BoomerAMGSetPrintLevel(s.amg, 0);
-
-  HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &s.pcg);
-  HYPRE_PCGSetMaxIter(s.pcg, options_.max_iterations);
-  HYPRE_PCGSetTol(s.pcg, options_.relative_tolerance);
-  HYPRE_PCGSetAbsoluteTol(s.pcg, options_.absolute_tolerance);
-  HYPRE_PCGSetTwoNorm(s.pcg, 1);
-  HYPRE_PCGSetPrintLevel(s.pcg, 0);
-  HYPRE_PCGSetLogging(s.pcg, 1);
-  HYPRE_ParCSRPCGSetPrecond(s.pcg, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, s.amg);
+  if (Amg()) {
+    CreateAmgCg();
+  } else {
+    CreateIluBiCgStab();
+  }
   need_setup_ = true;
 }
 
-void HypreAmgSolver::SetRelativeTolerance(double relative) {
-  options_.relative_tolerance = relative;
-  if (impl_) HYPRE_PCGSetTol(impl_->pcg, relative);
+void HypreSolver::CreateAmgCg() {
+  Impl& s = *impl_;
+  const AmgOptions& amg = options_.amg;
+  HYPRE_BoomerAMGCreate(&s.precond);
+  HYPRE_BoomerAMGSetCoarsenType(s.precond, 10);  // HMIS
+  HYPRE_BoomerAMGSetInterpType(s.precond, 6);    // extended+i
+  HYPRE_BoomerAMGSetPMaxElmts(s.precond, amg.interp_max_elements);
+  HYPRE_BoomerAMGSetAggNumLevels(s.precond, amg.aggressive_levels);
+  HYPRE_BoomerAMGSetAggInterpType(s.precond, 4);  // multipass on aggressive levels
+  HYPRE_BoomerAMGSetStrongThreshold(s.precond, amg.strong_threshold);
+  HYPRE_BoomerAMGSetCycleRelaxType(s.precond, 13, 1);  // l1-Gauss-Seidel forward, down
+  HYPRE_BoomerAMGSetCycleRelaxType(s.precond, 14, 2);  // l1-Gauss-Seidel backward, up
+  HYPRE_BoomerAMGSetCycleRelaxType(s.precond, 9, 3);   // Gaussian elimination, coarsest
+  HYPRE_BoomerAMGSetNumSweeps(s.precond, 1);
+  HYPRE_BoomerAMGSetMaxIter(s.precond, 1);
+  HYPRE_BoomerAMGSetTol(s.precond, 0.0);
+  HYPRE_BoomerAMGSetPrintLevel(s.precond, 0);
+
+  HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &s.krylov);
+  HYPRE_PCGSetMaxIter(s.krylov, options_.max_iterations);
+  HYPRE_PCGSetTol(s.krylov, options_.relative_tolerance);
+  HYPRE_PCGSetAbsoluteTol(s.krylov, options_.absolute_tolerance);
+  HYPRE_PCGSetTwoNorm(s.krylov, 1);
+  HYPRE_PCGSetPrintLevel(s.krylov, 0);
+  HYPRE_PCGSetLogging(s.krylov, 1);
+  HYPRE_ParCSRPCGSetPrecond(s.krylov, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, s.precond);
 }
 
-SolverSummary HypreAmgSolver::Solve(const CsrMatrix& a, std::span<const double> b, std::span<double> x) {
+void HypreSolver::CreateIluBiCgStab() {
+  Impl& s = *impl_;
+  HYPRE_ILUCreate(&s.precond);
+  HYPRE_ILUSetType(s.precond, 0);            // block Jacobi ILU(k): one block in serial
+  HYPRE_ILUSetLevelOfFill(s.precond, 0);     // ILU(0): the matrix's own sparsity
+  HYPRE_ILUSetLocalReordering(s.precond, 0); // cell order of the mesh (no RCM pass per setup)
+  HYPRE_ILUSetMaxIter(s.precond, 1);
+  HYPRE_ILUSetTol(s.precond, 0.0);
+  HYPRE_ILUSetPrintLevel(s.precond, 0);
+
+  HYPRE_ParCSRBiCGSTABCreate(MPI_COMM_WORLD, &s.krylov);
+  HYPRE_ParCSRBiCGSTABSetMaxIter(s.krylov, options_.max_iterations);
+  HYPRE_ParCSRBiCGSTABSetTol(s.krylov, options_.relative_tolerance);
+  HYPRE_ParCSRBiCGSTABSetAbsoluteTol(s.krylov, options_.absolute_tolerance);
+  HYPRE_ParCSRBiCGSTABSetPrintLevel(s.krylov, 0);
+  HYPRE_ParCSRBiCGSTABSetLogging(s.krylov, 1);
+  HYPRE_ParCSRBiCGSTABSetPrecond(s.krylov, HYPRE_ILUSolve, HYPRE_ILUSetup, s.precond);
+}
+
+void HypreSolver::SetRelativeTolerance(double relative) {
+  options_.relative_tolerance = relative;
+  if (!impl_) return;
+  if (Amg()) {
+    HYPRE_PCGSetTol(impl_->krylov, relative);
+  } else {
+    HYPRE_ParCSRBiCGSTABSetTol(impl_->krylov, relative);
+  }
+}
+
+SolverSummary HypreSolver::Solve(const CsrMatrix& a, std::span<const double> b, std::span<double> x) {
   SolverSummary summary;
   if (!impl_ || impl_->n != a.rows()) Create(a);
   Impl& s = *impl_;
@@ -146,23 +191,35 @@ SolverSummary HypreAmgSolver::Solve(const CsrMatrix& a, std::span<const double> 
   HYPRE_IJMatrixAssemble(s.ij_a);
   HYPRE_IJVectorSetValues(s.ij_b, s.n, s.row_index.data(), b.data());
   HYPRE_IJVectorSetValues(s.ij_x, s.n, s.row_index.data(), x.data());
+  if (!Amg()) need_setup_ = true;  // a new factorization for the new values
   if (need_setup_ || !s.has_setup) {
-    HYPRE_ParCSRPCGSetup(s.pcg, s.a, s.b, s.x);
+    if (Amg()) {
+      HYPRE_ParCSRPCGSetup(s.krylov, s.a, s.b, s.x);
+    } else {
+      HYPRE_ParCSRBiCGSTABSetup(s.krylov, s.a, s.b, s.x);
+    }
     s.has_setup = true;
     need_setup_ = false;
     summary.setup = true;
     ++setups_;
   }
-  HYPRE_ParCSRPCGSolve(s.pcg, s.a, s.b, s.x);
   HYPRE_Int iterations = 0;
   HYPRE_Real rel = 0.0;
-  HYPRE_PCGGetNumIterations(s.pcg, &iterations);
-  HYPRE_PCGGetFinalRelativeResidualNorm(s.pcg, &rel);
+  if (Amg()) {
+    HYPRE_ParCSRPCGSolve(s.krylov, s.a, s.b, s.x);
+    HYPRE_PCGGetNumIterations(s.krylov, &iterations);
+    HYPRE_PCGGetFinalRelativeResidualNorm(s.krylov, &rel);
+  } else {
+    HYPRE_ParCSRBiCGSTABSolve(s.krylov, s.a, s.b, s.x);
+    HYPRE_ParCSRBiCGSTABGetNumIterations(s.krylov, &iterations);
+    HYPRE_ParCSRBiCGSTABGetFinalRelativeResidualNorm(s.krylov, &rel);
+  }
   HYPRE_IJVectorGetValues(s.ij_x, s.n, s.row_index.data(), x.data());
   HYPRE_ClearAllErrors();
   summary.iterations = iterations;
   summary.final_relative_residual = rel;
   summary.converged = iterations < options_.max_iterations && std::isfinite(rel);
+  if (!Amg()) return summary;
   // Growth test against the count of the first solve with the same
   // tolerance since the last setup (intermediate and final correctors use
   // different tolerances, so their counts are not comparable).

@@ -1,0 +1,217 @@
+#!/usr/bin/env python3
+"""Benchmark: hull resistance with the linearized free surface (issue #6,
+acceptance 4 and 5).
+
+Runs (unless --report-only) the resistance cases of data/cases/resistance with
+`kelvin run`, one at a time under `nice`:
+  Wigley (6 m model): double body, then the linearized free surface at
+  Fn = 0.25, 0.316, 0.408; DTC (1:59.407) at 1.668 m/s: double body, the
+  linearized free surface at maximum Courant number about 100 (dtc_lfs) and
+  the same run at about 10 (dtc_lfs_cfl10).
+Then reads each run's resistance.h5 and history.h5 and writes the section
+`lfs_resistance` of BENCHMARKS.md:
+  - Wigley C_T against the experimental values of the Bai & McCarthy (1979)
+    compilation (3.340e-3, 3.620e-3, 4.090e-3), ratio and verdict at 5%;
+  - DTC R_T against the measured 31.83 N (el Moctar, Shigunov & Zorn 2012,
+    Ship Technology Research 59(3), Table 4), ratio;
+  - the Courant study: largest Courant number of each DTC run, its converged
+    R_T and the relative difference (target < 0.5%);
+  - cost: process CPU time per cell per outer iteration and CPU time until
+    R_T stays within 0.1% of its final value and until the steady criterion
+    stopped the run, with ratios against the double-body SST peer
+    (OpenFOAM simpleFoam, ../shared/peers/openfoam/README.md: 3.1 us per cell
+    per SIMPLE iteration on this machine) and against kelvin's own
+    double-body run on the same grid.
+
+Usage: tools/bench/lfs_resistance_bench.py --kelvin build/ci/tools/kelvin [--report-only] [--write]
+       [--cases wigley_fn0316,dtc_lfs] [--results results]
+"""
+import argparse
+import datetime
+import math
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pimple_vs_openfoam import replace_section  # noqa: E402
+
+NAME = "lfs_resistance"
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+CASES = os.path.join(ROOT, "data", "cases", "resistance")
+
+# Bai & McCarthy (1979) compilation of the Wigley experiments (issue #6).
+WIGLEY_EXP = {"wigley_fn0250": (0.250, 3.340e-3), "wigley_fn0316": (0.316, 3.620e-3),
+              "wigley_fn0408": (0.408, 4.090e-3)}
+# el Moctar, Shigunov & Zorn (2012), Table 4: model 1:59.407 at 1.668 m/s.
+DTC_RT_EXP = 31.83
+PEER_US_PER_CELL_ITER = 3.1  # OpenFOAM simpleFoam SST double body, peers README
+ORDER = ["wigley_double_body", "wigley_fn0250", "wigley_fn0316", "wigley_fn0408", "dtc_double_body", "dtc_lfs",
+         "dtc_lfs_cfl10"]
+
+
+def n_cells(poly_mesh):
+    with open(os.path.join(poly_mesh, "owner")) as f:
+        for line in f:
+            if "nCells" in line:
+                for tok in line.replace(";", " ").split():
+                    if tok.startswith("nCells:"):
+                        return int(tok.split(":")[1])
+    raise SystemExit(f"no nCells in {poly_mesh}/owner")
+
+
+def run_case(kelvin, name, results):
+    case = os.path.join(CASES, name + ".yaml")
+    out = os.path.join(results, name)
+    os.makedirs(out, exist_ok=True)
+    env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
+    with open(os.path.join(out, "run.log"), "w") as log:
+        rc = subprocess.call(["nice", kelvin, "run", case, "-o", out, "--no-progress"], stdout=log,
+                             stderr=subprocess.STDOUT, env=env)
+    if rc != 0:
+        print(f"{name}: kelvin run exited with {rc} (see {out}/run.log)", file=sys.stderr)
+
+
+def failure(name, results):
+    """The divergence message of a run without a resistance.h5, if any."""
+    for log in (os.path.join(results, name, "run.log"), os.path.join(results, name + ".log")):
+        if os.path.isfile(log):
+            for line in open(log, errors="replace"):
+                if "diverged at step" in line:
+                    return line.strip().replace("kelvin: ", "")
+    return None
+
+
+def read(name, results, grids):
+    out = os.path.join(results, name)
+    r = os.path.join(out, "resistance.h5")
+    if not os.path.isfile(r):
+        return None
+    d = {"name": name}
+    with h5py.File(r, "r") as f:
+        for k in ("R_T", "R_F", "R_P", "C_T", "C_F", "C_P", "C_W", "R_WL", "C_WL", "Fn", "Re", "speed",
+                  "converged", "converged_step"):
+            d[k] = float(f[k][0]) if k in f else math.nan
+    with h5py.File(os.path.join(out, "history.h5"), "r") as f:
+        cpu = f["cpu_time"][:]
+        outer = f["outer_iterations"][:]
+        co = f["courant"][:]
+        fp = f["forces/hull/pressure"][:]
+        fv = f["forces/hull/viscous"][:]
+    rt = -(fp[:, 0] + fv[:, 0])  # inflow along -x in every case
+    final = rt[-1]
+    off = np.abs(rt - final) > 1e-3 * abs(final)
+    settled = int(np.nonzero(off)[0][-1]) + 1 if off.any() else 0
+    settled = min(settled, len(rt) - 1)
+    grid = "wigley_lfs" if name.startswith("wigley") else "dtc_lfs"
+    cells = n_cells(os.path.join(grids, grid, "constant", "polyMesh"))
+    d.update(cells=cells, steps=len(cpu), outer=int(outer.sum()), cpu=float(cpu[-1]),
+             cpu_settled=float(cpu[settled]), co_max=float(co[len(co) // 2:].max()),
+             us_per_cell_iter=1e6 * float(cpu[-1]) / (cells * float(outer.sum())))
+    return d
+
+
+def fmt(x, spec):
+    return "n/a" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
+
+
+def section(rows, failed=None):
+    by = {r["name"]: r for r in rows}
+    failed = failed or {}
+    lines = [f"## LFS hull resistance (issue #6, acceptance 4 and 5)\n",
+             f"Written by `tools/bench/lfs_resistance_bench.py` on {datetime.date.today()}; "
+             "k-omega SST with wall functions, linearized free surface on `freeSurface`, relaxed PIMPLE "
+             "(4 outer correctors, U 0.7, p 0.3) marching in pseudo-time until R_T, R_F, R_P and eta change by "
+             "< 0.1% over one flow-through (at least 20 steps). Process CPU time, serial, under `nice` on the "
+             "shared 2-core machine.\n"]
+    lines.append("### Wigley hull (6 m model, fresh water 15 C), C_T against experiment\n")
+    lines.append("| Fn | Re | C_T kelvin | C_T exp. | ratio | within 5% | C_F | C_P | C_W = C_P - C_P(db) | "
+                 "C_WL (separate) | converged |")
+    lines.append("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for name, (fn, ct) in WIGLEY_EXP.items():
+        r = by.get(name)
+        if not r:
+            lines.append(f"| {fn} | | {failed.get(name, 'not run')} | {ct:.3e} | | | | | | | |")
+            continue
+        ratio = r["C_T"] / ct
+        lines.append(f"| {fn} | {fmt(r['Re'], '.3g')} | {r['C_T']:.4e} | {ct:.3e} | {ratio:.3f} | "
+                     f"{'yes' if abs(ratio - 1) <= 0.05 else '**no**'} | {r['C_F']:.4e} | {r['C_P']:.4e} | "
+                     f"{fmt(r['C_W'], '.3e')} | {fmt(r['C_WL'], '.2e')} | "
+                     f"{'yes' if r['converged'] == 1 else '**no**'} |")
+    db = by.get("wigley_double_body")
+    if db:
+        lines.append(f"\nDouble body (Fn 0.316 speed): C_T {db['C_T']:.4e}, C_F {db['C_F']:.4e}, "
+                     f"C_P {db['C_P']:.4e}.\n")
+    lines.append("\n### DTC at 1.668 m/s (model 1:59.407, fixed at the design waterline)\n")
+    lines.append("| run | max Courant | R_T (N) | R_T / measured 31.83 N | R_F (N) | R_P (N) | C_T | C_W | "
+                 "converged | steps |")
+    lines.append("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    dtc_db = by.get("dtc_double_body")
+    for name in ("dtc_double_body", "dtc_lfs", "dtc_lfs_cfl10"):
+        r = by.get(name)
+        if r and name != "dtc_double_body" and math.isnan(r["C_W"]) and dtc_db:
+            r["C_W"] = r["C_P"] - dtc_db["C_P"]  # C_W = C_P - C_P(double body), same grid and speed
+        if not r:
+            lines.append(f"| {name} | {failed.get(name, 'not run')} | | | | | | | | |")
+            continue
+        lines.append(f"| {name} | {r['co_max']:.0f} | {r['R_T']:.3f} | {r['R_T'] / DTC_RT_EXP:.3f} | "
+                     f"{r['R_F']:.3f} | {r['R_P']:.3f} | {r['C_T']:.4e} | {fmt(r['C_W'], '.3e')} | "
+                     f"{'yes' if r['converged'] == 1 else '**no**'} | {r['steps']} |")
+    a, b = by.get("dtc_lfs"), by.get("dtc_lfs_cfl10")
+    if a and b:
+        diff = (a["R_T"] - b["R_T"]) / b["R_T"]
+        lines.append(f"\nCourant study: R_T at Courant {a['co_max']:.0f} differs from Courant {b['co_max']:.0f} by "
+                     f"{100 * diff:+.3f}% (target < 0.5%: {'met' if abs(diff) < 5e-3 else '**missed**'}).\n")
+    lines.append("\n### Cost\n")
+    lines.append("| run | cells | outer iterations | CPU s | us per cell per iteration | ratio to simpleFoam "
+                 "peer (3.1 us) | CPU s until R_T within 0.1% of final | CPU s to the stop |")
+    lines.append("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for name in ORDER:
+        r = by.get(name)
+        if not r:
+            continue
+        lines.append(f"| {name} | {r['cells']} | {r['outer']} | {r['cpu']:.0f} | {r['us_per_cell_iter']:.2f} | "
+                     f"{r['us_per_cell_iter'] / PEER_US_PER_CELL_ITER:.2f} | {r['cpu_settled']:.0f} | "
+                     f"{r['cpu']:.0f} |")
+    for lfs, dbn in (("dtc_lfs", "dtc_double_body"), ("wigley_fn0316", "wigley_double_body")):
+        x, y = by.get(lfs), by.get(dbn)
+        if x and y:
+            lines.append(f"\n{lfs} / kelvin double body on the same grid: CPU to the stop "
+                         f"{x['cpu'] / y['cpu']:.2f}, per cell per iteration "
+                         f"{x['us_per_cell_iter'] / y['us_per_cell_iter']:.2f}.")
+    lines.append("\nThe simpleFoam figure is the peer README's measurement on this machine (127k-cell DTC double "
+                 "body), not re-run by this tool; the peer benchmark proper is acceptance 6.\n")
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--kelvin", default=os.path.join(ROOT, "build", "ci", "tools", "kelvin"))
+    ap.add_argument("--results", default=os.path.join(ROOT, "results"))
+    ap.add_argument("--grids", default=os.path.join(ROOT, "build", "grids"))
+    ap.add_argument("--cases", default=",".join(ORDER), help="comma-separated subset to run")
+    ap.add_argument("--report-only", action="store_true", help="only read existing results")
+    ap.add_argument("--write", action="store_true", help="write the section into BENCHMARKS.md")
+    ap.add_argument("--output", default=os.path.join(ROOT, "BENCHMARKS.md"))
+    ap.add_argument("--note", default=None, help="file with measured findings to append to the section")
+    args = ap.parse_args()
+    names = [n for n in args.cases.split(",") if n]
+    if not args.report_only:
+        for n in names:
+            run_case(args.kelvin, n, args.results)
+    rows = [r for r in (read(n, args.results, args.grids) for n in ORDER) if r]
+    failed = {n: failure(n, args.results) for n in ORDER}
+    text = section(rows, {n: m for n, m in failed.items() if m and n not in {r["name"] for r in rows}})
+    if args.note:
+        text += "\n" + open(args.note).read().strip() + "\n"
+    print(text)
+    if args.write:
+        replace_section(args.output, NAME, text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,111 @@
+#!/usr/bin/python3
+"""Plots of a steady resistance run (`kelvin run` with a `resistance:` section).
+
+Usage: tools/plot_resistance.py RESULT_DIR [RESULT_DIR ...]
+
+Reads RESULT_DIR/resistance.h5 and writes next to it
+  wave_cuts.png     eta along the y = const cuts (x / L)
+  wave_profile.png  eta along the hull waterline, port and starboard
+  convergence.png   R_T, R_F, R_P and the relative changes per window
+"""
+import math
+import os
+import sys
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def scalar(f, name, default=math.nan):
+    return float(f[name][0]) if name in f else default
+
+
+def plot(directory):
+    path = os.path.join(directory, "resistance.h5")
+    with h5py.File(path, "r") as f:
+        length = 1.0
+        fn = scalar(f, "Fn")
+        speed = scalar(f, "speed")
+        if not math.isnan(fn):
+            length = speed * speed / (fn * fn * 9.81)
+        title = f"{os.path.basename(os.path.normpath(directory))}: C_T = {scalar(f, 'C_T'):.4e}"
+        if not math.isnan(fn):
+            title += f", Fn = {fn:.3f}"
+        written = []
+        if "wave_cuts" in f:
+            fig, ax = plt.subplots(figsize=(9, 4))
+            for name in sorted(f["wave_cuts"]):
+                g = f["wave_cuts"][name]
+                x = g["x"][:]
+                eta = g["eta"][:]
+                ax.plot(x / length, eta / length * 1e3, label=f"y/L = {g.attrs['y'] / length:.3f}")
+            ax.set_xlabel("x / L (bow at the right, flow from right to left)")
+            ax.set_ylabel("eta / L x 1000")
+            ax.set_title(title)
+            ax.grid(alpha=0.3)
+            ax.legend()
+            out = os.path.join(directory, "wave_cuts.png")
+            fig.tight_layout()
+            fig.savefig(out, dpi=120)
+            plt.close(fig)
+            written.append(out)
+        if "wave_profile" in f:
+            x = f["wave_profile/x"][:]
+            y = f["wave_profile/y"][:]
+            eta = f["wave_profile/eta"][:]
+            fig, ax = plt.subplots(figsize=(9, 4))
+            for side, mask in (("port (y > 0)", y >= 0), ("starboard (y < 0)", y < 0)):
+                if mask.any():
+                    ax.plot(x[mask] / length, eta[mask] / length * 1e3, "o-", ms=3, label=side)
+            ax.set_xlabel("x / L")
+            ax.set_ylabel("eta / L x 1000 at the hull")
+            ax.set_title(title)
+            ax.grid(alpha=0.3)
+            ax.legend()
+            out = os.path.join(directory, "wave_profile.png")
+            fig.tight_layout()
+            fig.savefig(out, dpi=120)
+            plt.close(fig)
+            written.append(out)
+        h = f["history"][:]
+        fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+        for col, name in ((1, "R_T"), (2, "R_F"), (3, "R_P"), (4, "R_WL (separate)")):
+            a1.plot(h[:, 0], h[:, col], label=name)
+        a1.set_ylabel("N")
+        a1.legend()
+        a1.grid(alpha=0.3)
+        a1.set_title(title)
+        a2.semilogy(h[:, 0], h[:, 5], label="force change / R_T over one window")
+        if np.any(np.isfinite(h[:, 6]) & (h[:, 6] > 0)):
+            a2.semilogy(h[:, 0], h[:, 6], label="eta change (relative L2)")
+        a2.axhline(scalar(f, "tolerance"), color="k", ls="--", lw=0.8, label="tolerance")
+        a2.set_xlabel("pseudo-time (s)")
+        a2.legend()
+        a2.grid(alpha=0.3)
+        out = os.path.join(directory, "convergence.png")
+        fig.tight_layout()
+        fig.savefig(out, dpi=120)
+        plt.close(fig)
+        written.append(out)
+    return written
+
+
+def main(argv):
+    if len(argv) < 2:
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
+    for directory in argv[1:]:
+        if not os.path.isfile(os.path.join(directory, "resistance.h5")):
+            print(f"plot_resistance: {directory}/resistance.h5 not found", file=sys.stderr)
+            return 1
+        for out in plot(directory):
+            print(out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
