@@ -406,12 +406,12 @@ def replace_section(path, name, section):
 def settle_text(s, unit="iteration"):
     if s["iteration"] is None:
         return "never (last value outside the band)"
+    if not s["settled"]:
+        return (f"NOT settled (last-10% window spread {100 * s['spread']:.2f}%, its mean moved "
+                f"{100 * s['drift']:+.2f}% from the window before)")
     t = f"{unit} {s['iteration']:.0f}, {s['cpu']:.1f} s CPU"
     if "cpu_charged" in s:
         t += f" ({s['cpu_charged']:.1f} s with set-up)"
-    if not s["settled"]:
-        t += (f" (NOT settled: last-10% window spread {100 * s['spread']:.2f}%, its mean moved "
-              f"{100 * s['drift']:+.2f}% from the window before)")
     return t
 
 
@@ -550,8 +550,11 @@ def report(db, vof, rec, kv, args):
         if not m["settle"]["settled"]:
             notes.append(f"The {name} run did not settle by the criterion within its {m['iterations']} iterations "
                          f"(last-10% window spread {100 * m['settle']['spread']:.2f}% of its mean, which moved "
-                         f"{100 * m['settle']['drift']:+.2f}% from the window before): its CPU time to "
-                         f"settle is only bounded from below by the whole run, {m['cpu_total']:.0f} s.")
+                         f"{100 * m['settle']['drift']:+.2f}% from the window before)"
+                         + (f"; its running mean over {m['smooth']} iterations did (table above)."
+                            if m.get("settle_smooth") and m["settle_smooth"]["settled"] else
+                            f": its CPU time to settle is only bounded from below by the whole run, "
+                            f"{m['cpu_total']:.0f} s."))
     if kv:
         for tag in ("settle_fine", "settle_coarse"):
             if not kv[tag]["settled"]:
