@@ -1,0 +1,95 @@
+// Issue 7, acceptance 4, on the Wigley hull with k-omega SST and the
+// linearized free surface (data/cases/captive_cfd/wigley_lfs_*.yaml: 1 m
+// hull, Re 1e6, Fn 0.32, 15k cells, the whole grid moving in still water).
+// The campaign (4 static drift, 2 pure sway and 2 pure yaw runs) is computed
+// and identified; the linear derivatives must have the physically expected
+// signs (Y'v < 0, N'v < 0, Y'r > 0, N'r < 0) and magnitudes within a factor
+// 2 of the empirical formulas of Inoue, Hirano & Kijima (1981),
+// "Hydrodynamic derivatives on ship manoeuvring", International Shipbuilding
+// Progress 28(321):112-125, for an even-keel hull with k = 2d/L = 0.125,
+// C_B = 4/9, B/L = 0.1 (prime system 0.5 rho L d U^2):
+//   Y'v = -(pi k / 2 + 1.4 C_B B/L) = -0.259,  Y'r = pi k / 4 = 0.098,
+//   N'v = -k = -0.125,                         N'r = -(0.54 k - k^2) = -0.052.
+// The formulas are regressions over merchant-ship models at low Froude
+// number (no wave effect, within about +-20% of their data); the factor 2
+// allows for a slender hull outside that data set and the free surface at
+// Fn 0.32. Every run's nondimensional RMS fit residual is printed.
+// About 5 CPU-minutes (label slow).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "identification/captive_io.h"
+#include "identification/joint_fit.h"
+#include "tests/test_utilities/test_utilities.h"
+
+namespace kelvin::ident {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void Replace(std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
+}
+
+TEST(WigleyLfsCampaign, LinearDerivativesHaveTheExpectedSignsAndMagnitudes) {
+  const fs::path data = kelvin::testing::SourceDir() / "data/cases/captive_cfd";
+  const std::string kelvin = (kelvin::testing::ToolsDir() / "kelvin").string();
+  kelvin::testing::ScopedTempDir dir;
+  const auto mesh = kelvin::testing::RunCommand(kelvin + " mesh " + (data / "wigley_lfs_mesh.yaml").string() +
+                                                " -o " + (dir / "grid").string());
+  ASSERT_EQ(mesh.exit_code, 0) << mesh.output;
+  std::string case_text = ReadText(data / "wigley_lfs_case.yaml");
+  Replace(case_text, "../../../build/grids/wigley_lfs_captive/constant/polyMesh",
+          (dir / "grid/constant/polyMesh").string());
+  std::ofstream(dir / "case.yaml") << case_text;
+  std::string campaign = ReadText(data / "wigley_lfs_campaign.yaml");
+  Replace(campaign, "ship: wigley_ship.yaml", "ship: " + (data / "wigley_ship.yaml").string());
+  Replace(campaign, "case: wigley_lfs_case.yaml", "case: " + (dir / "case.yaml").string());
+  Replace(campaign, "directory: ../results/wigley_lfs", "directory: " + (dir / "runs").string());
+  std::ofstream(dir / "campaign.yaml") << campaign;
+  const auto run = kelvin::testing::RunCommand(kelvin + " captive " + (dir / "campaign.yaml").string() +
+                                               " --no-progress");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  const CaptiveCampaign c = ReadCampaignH5(dir / "runs/wigley_lfs.h5");
+  const JointFitResult fit = FitCampaign(c, JointFitOptions{}, "wigley_lfs");
+  ASSERT_TRUE(fit.converged) << fit.solver_report;
+  for (const RunFitStatistics& r : fit.runs) {
+    std::printf("%-16s RMS residual / RMS measured: X %.3g/%.3g  Y %.3g/%.3g  N %.3g/%.3g\n", r.run.c_str(),
+                r.rms_residual[0], r.rms_measured[0], r.rms_residual[1], r.rms_measured[1], r.rms_residual[2],
+                r.rms_measured[2]);
+  }
+  const double k = 2 * 0.0625 / 1.0, cb = 4.0 / 9.0, b_l = 0.1;
+  struct Expected {
+    const char* name;
+    double inoue;
+  };
+  for (const Expected& e : {Expected{"Y_v", -(std::numbers::pi * k / 2 + 1.4 * cb * b_l)},
+                            Expected{"Y_r", std::numbers::pi * k / 4}, Expected{"N_v", -k},
+                            Expected{"N_r", -(0.54 * k - k * k)}}) {
+    const int i = CoefficientIndex(e.name);
+    ASSERT_GE(i, 0) << e.name;
+    ASSERT_TRUE(fit.Identified(i)) << e.name;
+    const double v = fit.coefficients[i];
+    std::printf("%s = %.4f (Inoue et al. 1981: %.4f, ratio %.2f)\n", e.name, v, e.inoue, v / e.inoue);
+    EXPECT_GT(v / e.inoue, 0.5) << e.name << " sign or magnitude";
+    EXPECT_LT(v / e.inoue, 2.0) << e.name;
+  }
+}
+
+}  // namespace
+}  // namespace kelvin::ident
