@@ -8,10 +8,16 @@
 // Prohaska values lie about 1.05-1.12). The pressure (form) part C_P must be
 // positive and small.
 //
-// WigleyCoarseGrid (ctest label `slow`, about 2-4 CPU minutes): grid 3 of
-// the study family (20,608 cells, first-cell y+ target 70).
-// WigleyCiGrid (label `validation`, under a minute): the same hull on a
-// grid coarsened once more (about 7,000 cells) with y+ target 50.
+// WigleyFineGrid (ctest label `slow`, several CPU minutes): grid 1 of the
+// study family (164,864 cells, first-cell y+ target 35), the grid the
+// acceptance is judged on: C_V within 5% of (1 + k) C_F0, C_P > 0.
+// WigleyCoarseGrid (label `validation`, about 30 CPU seconds): grid 3 of the
+// family (20,608 cells, y+ target 70). Asserted: the force settles, C_P is
+// positive and below 10% of C_V, the side force vanishes by symmetry, and C_V
+// is within 10% of (1 + k) C_F0 -- the wider band is the discretization
+// error of this grid measured by the three-grid study (BENCHMARKS.md,
+// section doublebody: grid 3 C_V is about 8% below grid 1 and the
+// extrapolated value).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -72,17 +78,33 @@ DoubleBody Run(const fs::path& poly_mesh, const fs::path& out) {
   return r;
 }
 
-TEST(DoubleBodyTest, WigleyCoarseGrid) {
-  if (!std::getenv("KELVIN_DOUBLEBODY_SLOW")) GTEST_SKIP() << "ctest label slow (KELVIN_DOUBLEBODY_SLOW=1)";
-  ScopedTempDir tmp;
+// Builds the study family in tmp/grids and runs the case on grid `level`.
+DoubleBody RunGrid(const ScopedTempDir& tmp, int level) {
   const MeshCase mc = LoadMeshCase(SourceDir() / "data/cases/doublebody/wigley_mesh.yaml");
   RunMeshCase(mc, 3, tmp / "grids");
-  const DoubleBody r = Run(tmp / "grids/grid3/constant/polyMesh", tmp / "run");
+  return Run(tmp / "grids" / ("grid" + std::to_string(level)) / "constant/polyMesh", tmp / "run");
+}
+
+TEST(DoubleBodyTest, WigleyFineGrid) {
+  if (!std::getenv("KELVIN_DOUBLEBODY_SLOW")) GTEST_SKIP() << "ctest label slow (KELVIN_DOUBLEBODY_SLOW=1)";
+  ScopedTempDir tmp;
+  const DoubleBody r = RunGrid(tmp, 1);
   const double c_v_ref = kFormFactor * IttcFrictionLine(kReynolds);
   EXPECT_TRUE(r.settled);
   EXPECT_NEAR(r.C_T, c_v_ref, 0.05 * c_v_ref);
   EXPECT_GT(r.C_P, 0.0);
-  EXPECT_LT(r.C_P, 0.15 * r.C_T);
+  EXPECT_LT(r.C_P, 0.10 * r.C_T);
+  EXPECT_LT(r.side_force_ratio, 1e-3);
+}
+
+TEST(DoubleBodyTest, WigleyCoarseGrid) {
+  ScopedTempDir tmp;
+  const DoubleBody r = RunGrid(tmp, 3);
+  const double c_v_ref = kFormFactor * IttcFrictionLine(kReynolds);
+  EXPECT_TRUE(r.settled);
+  EXPECT_NEAR(r.C_T, c_v_ref, 0.10 * c_v_ref);
+  EXPECT_GT(r.C_P, 0.0);
+  EXPECT_LT(r.C_P, 0.10 * r.C_T);
   EXPECT_LT(r.side_force_ratio, 1e-3);
 }
 
