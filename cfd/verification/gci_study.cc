@@ -60,7 +60,7 @@ bool ReadRunRecord(GridRunRecord& r) {
   if (!fs::exists(file) || !fs::exists(r.directory / "history.h5")) return false;
   const data::ConfigNode n = data::ConfigNode::LoadFile(file);
   if (n.Get<std::string>("status", "") != "completed") return false;
-  if (n.Get<long>("cells", -1) != r.cells) return false;  // another grid was run here
+  if (std::lround(n.Get<double>("cells", -1.0)) != r.cells) return false;  // another grid was run here
   r.steps = n.Get<int>("steps", 0);
   r.outer_iterations = n.Get<int>("outer_iterations", 0);
   r.cpu_seconds = n.Get<double>("cpu_seconds", 0.0);
