@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
@@ -202,7 +203,9 @@ TEST(GciStudyTest, ReusesFinishedRunsAndReportsTheGci) {
   EXPECT_EQ(h5.Read("grids/cells").rows, 3u);
   EXPECT_EQ(h5.StringAttribute("outputs/C_T", "convergence"), "monotonic");
   std::ifstream yaml(tmp / "report/gci.yaml");
-  const std::string text((std::istreambuf_iterator<char>(yaml)), std::istreambuf_iterator<char>());
+  std::ostringstream buffer;
+  buffer << yaml.rdbuf();
+  const std::string text = buffer.str();
   EXPECT_THAT(text, HasSubstr("convergence: monotonic"));
   EXPECT_THAT(text, HasSubstr("gci_fine:"));
 
