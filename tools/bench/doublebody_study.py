@@ -201,6 +201,15 @@ Three-grid study of the Wigley runs (`kelvin gci`, Celik et al. 2008; grid 1 fin
 {table}
 ```
 """
+    if dtc is None:
+        s += """
+DTC: not run in this section (`--skip-dtc`): the grid and `data/cases/doublebody/dtc.yaml` are ready, the
+run did not fit the CPU left on the shared machine. Run the script without `--skip-dtc` to add it.
+"""
+    s += f"""
+CPU times were measured with the machine loaded by other jobs (load average 5-9 on 2 cores during the runs);
+the per-iteration figures are inflated by that load (grid 1 ran mostly under it), so they are upper bounds.
+"""
     if peer_us:
         s += f"""
 Cost against OpenFOAM: the peer figure for simpleFoam (k-omega SST, wall functions) on the DTC double body is
