@@ -47,7 +47,7 @@ E GetEnum(const ConfigNode& node, std::string_view key, E fallback,
   node[key].Fail("one of " + names);
 }
 
-std::unique_ptr<Mesh> LoadMesh(const ConfigNode& m, const fs::path& case_dir) {
+std::unique_ptr<Mesh> LoadMesh(const ConfigNode& m, const fs::path& case_dir, const fs::path& poly_mesh_override) {
   m.ExpectKeys({"box", "poly_mesh", "renumber"});
   std::unique_ptr<Mesh> mesh;
   if (m.Has("box") == m.Has("poly_mesh")) m.Fail("exactly one of 'box' or 'poly_mesh'");
@@ -94,6 +94,7 @@ std::unique_ptr<Mesh> LoadMesh(const ConfigNode& m, const fs::path& case_dir) {
   } else {
     fs::path dir = m.Get<std::string>("poly_mesh");
     if (dir.is_relative()) dir = case_dir / dir;
+    if (!poly_mesh_override.empty()) dir = poly_mesh_override;
     mesh = std::make_unique<Mesh>(ReadPolyMesh(dir));
   }
   if (m.Get<bool>("renumber", true)) mesh->RenumberCells();
@@ -302,7 +303,10 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   root.ExpectKeys(
       {"mesh", "physics", "schemes", "solution", "time", "boundary", "output", "motion", "turbulence", "resistance"});
   Case c;
-  c.mesh = LoadMesh(root["mesh"], case_dir);
+  if (!overrides.poly_mesh.empty() && !root["mesh"].Has("poly_mesh")) {
+    root["mesh"].Fail("a poly_mesh entry (the grid is replaced by another grid of the family)");
+  }
+  c.mesh = LoadMesh(root["mesh"], case_dir, overrides.poly_mesh);
   const Mesh& mesh = *c.mesh;
   if (overrides.motion && root.Has("motion")) root["motion"].Fail("no motion: section (the campaign sets it)");
   if (overrides.motion) {
@@ -374,7 +378,8 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   }
 
   const ConfigNode t = root["time"];
-  t.ExpectKeys({"dt", "end"});
+  t.ExpectKeys({"dt", "end", "steady"});
+  if (t.Has("steady")) c.steady = LoadSteadyControl(t["steady"]);
   c.dt = overrides.dt > 0.0 ? overrides.dt : t.GetPositive("dt");
   // A harmonic motion with `periods` sets the end time.
   const double motion_end = c.motion ? c.motion->motion().options().EndTime() : 0.0;
@@ -412,7 +417,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   auto p = std::make_unique<ScalarField>("p", mesh, std::move(p_bcs));
 
   const ConfigNode o = root["output"];
-  o.ExpectKeys({"directory", "vtu_interval", "checkpoint_interval", "forces", "captive"});
+  o.ExpectKeys({"directory", "vtu_interval", "checkpoint_interval", "forces", "captive", "resistance"});
   c.output_directory = o.Get<std::string>("directory", "results");
   if (c.output_directory.is_relative()) c.output_directory = case_dir / c.output_directory;
   c.vtu_interval = o.Get<int>("vtu_interval", 0);
@@ -425,6 +430,14 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
       }
       c.force_patches.push_back(name);
     }
+  }
+  if (c.steady.enabled() && c.force_patches.empty()) {
+    t["steady"].Fail("output.forces naming the patches whose force decides when the run is steady");
+  }
+  if (o.Has("resistance")) {
+    c.resistance = LoadResistanceReference(o["resistance"]);
+    if (c.force_patches.empty()) o["resistance"].Fail("output.forces naming the hull patches");
+    if (c.resistance.area == 0.0) c.resistance.area = PatchArea(mesh, c.force_patches);
   }
   if (o.Has("captive")) {
     // Ship-axis loads on the force patches, prime system with these scales.
@@ -515,7 +528,9 @@ std::pair<Vector3, Vector3> PatchForce(const PimpleSolver& s, int patch_index, d
 
 RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   const ConfigNode root = ConfigNode::LoadFile(case_file);
-  Case c = LoadCase(root, case_file.parent_path());
+  CaseOverrides overrides;
+  overrides.poly_mesh = options.poly_mesh_override;
+  Case c = LoadCase(root, case_file.parent_path(), overrides);
   if (!options.output_override.empty()) c.output_directory = options.output_override;
   PimpleSolver& solver = *c.solver;
   const Mesh& mesh = *c.mesh;
@@ -578,6 +593,9 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   // Turbulence per step: residuals of k and omega, cells lifted by the bound
   // step, and y+ (min, mean, max) on each wall patch.
   std::vector<std::array<double, 4>> turbulence_rows;
+  // output.resistance: C_T, C_F (viscous), C_P (pressure) per step.
+  std::vector<std::array<double, 3>> resistance_rows;
+  ForceConvergence steady(c.steady);
   std::vector<std::vector<WallPatchStats>> wall_rows;
   constexpr std::size_t kForceColumn = 9;
   auto write_history = [&]() {
@@ -609,6 +627,25 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       w.WriteArray("forces/" + c.force_patches[k] + "/viscous", fv, {rows, 3}, "N", "viscous force on the patch");
     }
     if (!captive_rows.empty()) WriteCaptiveHistory(w, captive_rows);
+    if (!resistance_rows.empty()) {
+      const std::size_t n = resistance_rows.size();
+      const char* names[3] = {"resistance/C_T", "resistance/C_F", "resistance/C_P"};
+      const char* what[3] = {"total resistance coefficient F.d / (rho U^2 S / 2) of the force patches",
+                             "viscous (friction) part of C_T", "pressure part of C_T"};
+      for (int j = 0; j < 3; ++j) {
+        std::vector<double> v(n);
+        for (std::size_t r = 0; r < n; ++r) v[r] = resistance_rows[r][j];
+        w.WriteArray(names[j], v, {n}, "1", what[j]);
+      }
+      w.WriteArray("resistance/reference", std::vector<double>{c.resistance.speed, c.resistance.area, c.rho}, {3},
+                   "m/s, m^2, kg/m^3", "reference speed U, area S and density rho of the coefficients");
+    }
+    if (c.steady.enabled()) {
+      w.WriteArray("steady/change", std::vector<double>{steady.change()}, {1}, "1",
+                   "relative range of the monitored force over the time.steady window at the last step");
+      w.WriteArray("steady/converged", std::vector<double>{summary.steady_converged ? 1.0 : 0.0}, {1}, "1",
+                   "1 when the force settled within the tolerance before time.end");
+    }
     if (!turbulence_rows.empty()) {
       const std::size_t n = turbulence_rows.size();
       const char* names[4] = {"turbulence/residuals/k", "turbulence/residuals/omega", "turbulence/bounded/k",
@@ -665,6 +702,24 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       for (int d = 0; d < 3; ++d) row.push_back(fp[d]);
       for (int d = 0; d < 3; ++d) row.push_back(fv[d]);
     }
+    if (c.resistance.enabled() || c.steady.enabled()) {
+      // Summed pressure and viscous force of the force patches (the row holds
+      // them per patch after kForceColumn).
+      Vector3 fp = Vector3::Zero(), fv = Vector3::Zero();
+      for (std::size_t k = 0; k < c.force_patches.size(); ++k) {
+        for (int d = 0; d < 3; ++d) {
+          fp[d] += row[kForceColumn + 6 * k + d];
+          fv[d] += row[kForceColumn + 6 * k + 3 + d];
+        }
+      }
+      if (c.resistance.enabled()) {
+        const double q = 0.5 * c.rho * c.resistance.speed * c.resistance.speed * c.resistance.area;
+        const double cp = fp.dot(c.resistance.direction) / q, cf = fv.dot(c.resistance.direction) / q;
+        resistance_rows.push_back({cp + cf, cf, cp});
+      }
+      if (c.steady.enabled() && steady.Add(fp + fv)) summary.steady_converged = true;
+      summary.steady_change = steady.change();
+    }
     history.push_back(std::move(row));
     bool converged = false;
     if (resistance) {
@@ -676,7 +731,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
                                             {c.rho, c.captive_length, c.captive_draft,
                                              c.motion->motion().options().speed}));
     }
-    const bool last = i + 1 == total_steps || converged;
+    const bool last = i + 1 == total_steps || converged || summary.steady_converged;
     if ((last && c.vtu_interval >= 0) || (c.vtu_interval > 0 && solver.step() % c.vtu_interval == 0)) {
       write_fields();
     }
@@ -698,7 +753,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     }
     progress.Update(i + 1, fmt::format("step {} t={:.4g} Co={:.3g} U={:.2e} p={:.2e}", s.step, s.time,
                                        s.courant_max, s.initial_residual_U, s.initial_residual_p));
-    if (converged) break;
+    if (converged || summary.steady_converged) break;
   }
   if (!history.empty()) write_history();
   progress.Finish(summary.status == RunSummary::Status::kCompleted ? "done" : "diverged");
@@ -709,6 +764,19 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
                                   summary.output_directory.string());
     if (resistance && summary.steps > 0) {
       summary.message += "\n  " + resistance->Write(c.output_directory / "resistance.h5", solver);
+    }
+    if (c.steady.enabled()) {
+      summary.message +=
+          summary.steady_converged
+              ? fmt::format("\n  steady: force settled (range {:.3g} of |F| over {} steps)", summary.steady_change,
+                            c.steady.window)
+              : fmt::format("\n  steady: NOT settled by time.end (range {:.3g} of |F| over {} steps, tolerance {:.3g})",
+                            summary.steady_change, c.steady.window, c.steady.tolerance);
+    }
+    if (!resistance_rows.empty()) {
+      const auto& r = resistance_rows.back();
+      summary.message += fmt::format("\n  resistance: C_T {:.5e} = C_F {:.5e} + C_P {:.5e} (U {:.4g} m/s, S {:.5g} m^2)",
+                                     r[0], r[1], r[2], c.resistance.speed, c.resistance.area);
     }
     if (!wall_rows.empty()) {
       for (const WallPatchStats& w : wall_rows.back()) {

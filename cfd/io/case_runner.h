@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cfd/mesh/mesh.h"
+#include "cfd/io/steady_control.h"
 #include "cfd/motion/mesh_motion.h"
 #include "cfd/solver/pimple_solver.h"
 #include "data/schema/config.h"
@@ -22,6 +23,7 @@ namespace kelvin::cfd {
 struct RunOptions {
   std::filesystem::path restart;  // checkpoint to continue from (empty: none)
   std::filesystem::path output_override;  // replaces output.directory when set
+  std::filesystem::path poly_mesh_override;  // replaces mesh.poly_mesh when set (grid families)
   bool progress = true;
 };
 
@@ -35,6 +37,10 @@ struct RunSummary {
   std::filesystem::path last_checkpoint;
   double wall_seconds = 0.0;
   int outer_iterations = 0;
+  // time.steady: the force settled before time.end (steady_change is the
+  // relative force range over the window at the last step).
+  bool steady_converged = false;
+  double steady_change = 0.0;
 };
 
 // Everything a case file defines, built and validated (the mesh is owned).
@@ -54,6 +60,8 @@ struct Case {
   // the history (with a motion); length 0 = not requested.
   double captive_length = 0.0;
   double captive_draft = 0.0;
+  SteadyControl steady;             // time.steady
+  ResistanceReference resistance;   // output.resistance (area filled in)
 };
 
 // What a captive campaign sets for each run on top of a case file.
@@ -61,6 +69,7 @@ struct CaseOverrides {
   std::optional<MotionOptions> motion;  // the case file must then have no motion: section
   double dt = 0.0;                      // > 0: replaces time.dt (s)
   double end_time = 0.0;                // > 0: replaces time.end (s)
+  std::filesystem::path poly_mesh;      // non-empty: replaces mesh.poly_mesh
 };
 
 Case LoadCase(const data::ConfigNode& root, const std::filesystem::path& case_dir,

@@ -9,6 +9,7 @@ std::vector<Command> AddCommands(CLI::App& app) {
   commands.push_back(AddHullCommand(app));
   commands.push_back(AddMeshCommand(app));
   commands.push_back(AddRunCommand(app));
+  commands.push_back(AddGciCommand(app));
   commands.push_back(AddCaptiveCommand(app));
   commands.push_back(AddIdentifyCommand(app));
   commands.push_back(AddSimulateCommand(app));

@@ -21,6 +21,7 @@ Command AddCaptiveCommand(CLI::App& app);
 Command AddBridgeCommand(CLI::App& app);
 Command AddMeshCommand(CLI::App& app);
 Command AddRunCommand(CLI::App& app);
+Command AddGciCommand(CLI::App& app);
 Command AddIdentifyCommand(CLI::App& app);
 Command AddListenCommand(CLI::App& app);
 

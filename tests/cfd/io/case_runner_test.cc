@@ -126,3 +126,63 @@ TEST(CaseRunner, DivergenceStopsWithAStatusAndKeepsTheLastGoodCheckpoint) {
 
 }  // namespace
 }  // namespace kelvin::cfd
+
+namespace kelvin::cfd {
+namespace {
+
+// time.steady stops a run once the force has settled, and output.resistance
+// writes coefficients that are the force over 1/2 rho U^2 S (S: the patch
+// area by default).
+TEST(CaseRunner, SteadyStopAndResistanceCoefficients) {
+  kelvin::testing::ScopedTempDir tmp;
+  std::string t = CaseText(0.05, 50.0);
+  t.replace(t.find("time: {dt: "), 11, "time: {steady: {window: 10, tolerance: 1.0e-4, min_steps: 20}, dt: ");
+  t.replace(t.find("forces: [ymax]}"), 15, "forces: [ymax], resistance: {speed: 1, direction: [-2, 0, 0]}}");
+  RunOptions o;
+  o.progress = false;
+  const RunSummary s = RunCase(WriteCase(tmp.path(), t), o);
+  ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+  EXPECT_TRUE(s.steady_converged) << s.message;
+  EXPECT_LT(s.steps, 1000);  // stopped long before time.end
+  EXPECT_GE(s.steps, 20);
+  EXPECT_LT(s.steady_change, 1e-4);
+  EXPECT_NE(s.message.find("steady: force settled"), std::string::npos) << s.message;
+  const data::H5Reader h(tmp.path() / "out" / "history.h5");
+  const data::Series fp = h.Read("forces/ymax/pressure"), fv = h.Read("forces/ymax/viscous");
+  const data::Series ct = h.Read("resistance/C_T"), cf = h.Read("resistance/C_F"), cp = h.Read("resistance/C_P");
+  ASSERT_EQ(ct.rows, static_cast<std::size_t>(s.steps));
+  const std::size_t last = ct.rows - 1;
+  const double q = 0.5 * 1000.0 * 1.0 * 0.1;  // rho U^2 / 2 times the lid area 1 m x 0.1 m
+  EXPECT_NEAR(cf.at(last), -fv.at(last, 0) / q, 1e-12 * std::abs(cf.at(last)));
+  EXPECT_NEAR(cp.at(last), -fp.at(last, 0) / q, 1e-12 * std::abs(cf.at(last)));
+  EXPECT_NEAR(ct.at(last), cf.at(last) + cp.at(last), 1e-15);
+  EXPECT_GT(cf.at(last), 0.0);  // the fluid holds the lid back
+  EXPECT_DOUBLE_EQ(h.Read("steady/converged").at(0), 1.0);
+  EXPECT_NEAR(h.Read("resistance/reference").at(1), 0.1, 1e-12);
+}
+
+TEST(CaseRunner, BadSteadyAndResistanceSectionsAreErrors) {
+  const std::string t = CaseText();
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string s = t;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {window: 1, tolerance: 1.0e-3}, dt: "), "window");
+  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {window: 5, tolerance: 1.0e-3, min_steps: 2}, dt: "),
+                        "min_steps");
+  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {window: 5, tolerance: -1}, dt: "), "tolerance");
+  std::string no_forces = with("time: {dt: ", "time: {steady: {window: 5, tolerance: 1.0e-3}, dt: ");
+  no_forces.replace(no_forces.find("forces: [ymax]"), 14, "forces: []");
+  ExpectCaseConfigError(no_forces, "output.forces");
+  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 1}}"), "direction");
+  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 1, direction: [0, 0, 0]}}"),
+                        "non-zero finite vector");
+  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 0, direction: [1, 0, 0]}}"),
+                        "speed");
+  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [], resistance: {speed: 1, direction: [1, 0, 0]}}"),
+                        "output.forces");
+}
+
+}  // namespace
+}  // namespace kelvin::cfd

@@ -1,0 +1,114 @@
+// Double-body steady flow around the Wigley hull at Re = 5e6 with k-omega SST
+// and wall functions (data/cases/doublebody/wigley.yaml), issue #5
+// acceptance 3: the viscous resistance C_V = C_F + C_P of the double body
+// against (1 + k) C_F0, with C_F0 the ITTC-57 line 0.075 / (log10 Re - 2)^2
+// (Proc. 8th ITTC, Madrid 1957) and the form factor of the Wigley hull
+// 1 + k = 1.08 (ITTC cooperative experiments on Wigley parabolic models,
+// Kajitani et al. 1983, 17th ITTC Resistance Committee report; the tanks'
+// Prohaska values lie about 1.05-1.12). The pressure (form) part C_P must be
+// positive and small.
+//
+// WigleyFineGrid (ctest label `slow`, several CPU minutes): grid 1 of the
+// study family (164,864 cells, first-cell y+ target 35), the grid the
+// acceptance is judged on: C_V within 5% of (1 + k) C_F0, C_P > 0.
+// WigleyCoarseGrid (label `validation`, about 30 CPU seconds): grid 3 of the
+// family (20,608 cells, y+ target 70). Asserted: the force settles, C_P is
+// positive and below 10% of C_V, the side force vanishes by symmetry, and C_V
+// is within 10% of (1 + k) C_F0. The wider band is this grid's
+// discretization error measured by the three-grid study (BENCHMARKS.md,
+// section doublebody, run 2026-11-22): grid 3 C_V = 3.377e-3 is 4.3% below
+// the Richardson-extrapolated 3.529e-3 (observed order 3.2, GCI_fine 0.6%),
+// which itself is 3.8% below (1 + k) C_F0 = 3.668e-3; grid 1 gives 3.512e-3
+// (0.957 of the reference).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "cfd/grid/mesh_case.h"
+#include "cfd/io/case_runner.h"
+#include "cfd/verification/flat_plate.h"
+#include "data/schema/h5_file.h"
+#include "tests/test_utilities/test_utilities.h"
+
+namespace kelvin::cfd {
+namespace {
+
+namespace fs = std::filesystem;
+using kelvin::testing::ScopedTempDir;
+using kelvin::testing::SourceDir;
+
+constexpr double kFormFactor = 1.08;  // Wigley, see the header
+constexpr double kReynolds = 2.0 * 2.5 / 1.0e-6;
+
+struct DoubleBody {
+  double C_T = 0, C_F = 0, C_P = 0;
+  double side_force_ratio = 0;  // |F_y| / |F_x|: zero by symmetry
+  double y_plus_mean = 0;
+  bool settled = false;
+  int steps = 0;
+  long cells = 0;
+};
+
+DoubleBody Run(const fs::path& poly_mesh, const fs::path& out) {
+  RunOptions ro;
+  ro.poly_mesh_override = poly_mesh;
+  ro.output_override = out;
+  ro.progress = false;
+  const RunSummary s = RunCase(SourceDir() / "data/cases/doublebody/wigley.yaml", ro);
+  EXPECT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+  const data::H5Reader h(out / "history.h5");
+  DoubleBody r;
+  r.C_T = h.Read("resistance/C_T").values.back();
+  r.C_F = h.Read("resistance/C_F").values.back();
+  r.C_P = h.Read("resistance/C_P").values.back();
+  const data::Series fp = h.Read("forces/hull/pressure"), fv = h.Read("forces/hull/viscous");
+  const std::size_t last = fp.rows - 1;
+  r.side_force_ratio = std::abs(fp.at(last, 1) + fv.at(last, 1)) / std::abs(fp.at(last, 0) + fv.at(last, 0));
+  const data::Series yp = h.Read("turbulence/y_plus/hull");
+  r.y_plus_mean = yp.at(yp.rows - 1, 1);
+  r.settled = s.steady_converged;
+  r.steps = s.steps;
+  const double c_f0 = IttcFrictionLine(kReynolds);
+  std::printf(
+      "Wigley double body, %d steps (settled %d): C_F %.4e (C_F/C_F0 %.3f), C_P %.3e, C_V %.4e, "
+      "C_V/((1+k) C_F0) %.3f, y+ mean %.1f, |Y|/|X| %.1e\n",
+      r.steps, r.settled, r.C_F, r.C_F / c_f0, r.C_P, r.C_T, r.C_T / (kFormFactor * c_f0), r.y_plus_mean,
+      r.side_force_ratio);
+  return r;
+}
+
+// Builds the study family in tmp/grids and runs the case on grid `level`.
+DoubleBody RunGrid(const ScopedTempDir& tmp, int level) {
+  const MeshCase mc = LoadMeshCase(SourceDir() / "data/cases/doublebody/wigley_mesh.yaml");
+  RunMeshCase(mc, 3, tmp / "grids");
+  return Run(tmp / "grids" / ("grid" + std::to_string(level)) / "constant/polyMesh", tmp / "run");
+}
+
+TEST(DoubleBodyTest, WigleyFineGrid) {
+  if (!std::getenv("KELVIN_DOUBLEBODY_SLOW")) GTEST_SKIP() << "ctest label slow (KELVIN_DOUBLEBODY_SLOW=1)";
+  ScopedTempDir tmp;
+  const DoubleBody r = RunGrid(tmp, 1);
+  const double c_v_ref = kFormFactor * IttcFrictionLine(kReynolds);
+  EXPECT_TRUE(r.settled);
+  EXPECT_NEAR(r.C_T, c_v_ref, 0.05 * c_v_ref);
+  EXPECT_GT(r.C_P, 0.0);
+  EXPECT_LT(r.C_P, 0.10 * r.C_T);
+  EXPECT_LT(r.side_force_ratio, 1e-3);
+}
+
+TEST(DoubleBodyTest, WigleyCoarseGrid) {
+  ScopedTempDir tmp;
+  const DoubleBody r = RunGrid(tmp, 3);
+  const double c_v_ref = kFormFactor * IttcFrictionLine(kReynolds);
+  EXPECT_TRUE(r.settled);
+  EXPECT_NEAR(r.C_T, c_v_ref, 0.10 * c_v_ref);
+  EXPECT_GT(r.C_P, 0.0);
+  EXPECT_LT(r.C_P, 0.10 * r.C_T);
+  EXPECT_LT(r.side_force_ratio, 1e-3);
+}
+
+}  // namespace
+}  // namespace kelvin::cfd
