@@ -183,7 +183,7 @@ force varies by less than the tolerance times |F| over the window. Cases:
 Re = U Lpp / nu = {re_d:.3g}, snappy grid of `data/cases/mesh/dtc_snappy.yaml`). Coefficients on the wetted
 area S of the hull patch (Wigley S = {history(os.path.join(runs, 'grid1', 'history.h5'))['area']:.4f} m^2{f", DTC S = {dtc['area']:.4f} m^2 (published 6.2428 m^2)" if dtc else ''}).
 
-Form factors: Wigley 1 + k = {WIGLEY['form_factor']} (published range {WIGLEY['form_factor_range'][0]}-{WIGLEY['form_factor_range'][1]}; {WIGLEY['form_factor_source']});
+Form factors (values and sources as recalled; not yet checked against the papers, see issue #5): Wigley 1 + k = {WIGLEY['form_factor']} (published range {WIGLEY['form_factor_range'][0]}-{WIGLEY['form_factor_range'][1]}; {WIGLEY['form_factor_source']});
 DTC 1 + k = {DTC['form_factor']} ({DTC['form_factor_source']}). C_F0: ITTC-57 at Re = U L / nu;
 C_V = C_T of the double body (friction + viscous pressure). Acceptance: C_V within 5% of (1 + k) C_F0,
 C_P > 0 and small.

@@ -5,8 +5,9 @@
 // (Proc. 8th ITTC, Madrid 1957) and the form factor of the Wigley hull
 // 1 + k = 1.08 (ITTC cooperative experiments on Wigley parabolic models,
 // Kajitani et al. 1983, 17th ITTC Resistance Committee report; the tanks'
-// Prohaska values lie about 1.05-1.12). The pressure (form) part C_P must be
-// positive and small.
+// Prohaska values lie about 1.05-1.12). The value and the range are as
+// recalled and have not yet been checked against the report (issue #5).
+// The pressure (form) part C_P must be positive and small.
 //
 // WigleyFineGrid (ctest label `slow`, several CPU minutes): grid 1 of the
 // study family (164,864 cells, first-cell y+ target 35), the grid the
