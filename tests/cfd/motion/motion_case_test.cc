@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "cfd/io/case_runner.h"
+#include "cfd/grid/mesh_case.h"
 #include "cfd/io/checkpoint.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
@@ -150,6 +151,43 @@ TEST(MotionCase, MovingWallVelocityNeedsAMotion) {
         e.what(),
         HasSubstr("key 'boundary.obstacle.U.type' = 'movingWallVelocity': expected a condition "
                   "other than movingWallVelocity: it needs a motion: section"));
+  }
+}
+
+}  // namespace
+}  // namespace kelvin::cfd
+
+namespace kelvin::cfd {
+namespace {
+
+// The case files of the repository's CFD campaigns with SST and the free
+// surface (the Wigley campaign and the KCS campaign, whose hull the user
+// supplies) load on a hull grid with the patches they name, take the
+// campaign's motion, and step: the free surface moves with the motion's
+// point velocity, so on the first step of a pure sway from rest the
+// solution stays finite and the free surface has a condition to apply.
+TEST(MotionCase, CampaignCaseFilesLoadAndStepOnAHullGrid) {
+  kelvin::testing::ScopedTempDir dir;
+  const std::filesystem::path data = kelvin::testing::SourceDir() / "data/cases/captive_cfd";
+  const MeshCase mesh_case = LoadMeshCase(data / "wigley_lfs_mesh.yaml");
+  RunMeshCase(mesh_case, 1, dir / "grid");
+  for (const char* name : {"wigley_lfs_case.yaml", "kcs_case.yaml"}) {
+    CaseOverrides o;
+    o.poly_mesh = dir / "grid/constant/polyMesh";
+    MotionOptions m;
+    m.kind = PrescribedMotion::kPureSway;
+    m.speed = 1.0;
+    m.sway_amplitude = 0.05;
+    m.period = 2.0;
+    m.ramp_time = 2.0;
+    m.centre = Vector3(0.5, 0, 0);
+    o.motion = m;
+    o.dt = 0.02;
+    o.end_time = 0.04;
+    Case c = LoadCase(data::ConfigNode::LoadFile(data / name), data, o);
+    ASSERT_TRUE(c.motion) << name;
+    EXPECT_TRUE(c.solver->turbulence() != nullptr) << name;
+    for (int i = 0; i < 2; ++i) EXPECT_TRUE(c.solver->Step(c.dt).finite) << name;
   }
 }
 
