@@ -51,6 +51,9 @@ import resource
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pimple_vs_openfoam import replace_section  # noqa: E402
+
 NAME = "dtc_peers"
 PEER_DIR_DEFAULT = os.path.normpath(
     os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "peers", "openfoam"))
@@ -385,24 +388,6 @@ def analyse_kelvin(d, args):
 # ---------------------------------------------------------------------------
 # Report
 # ---------------------------------------------------------------------------
-def replace_section(path, name, section):
-    """Replaces the section between <!-- name:begin --> and <!-- name:end --> (or appends it); atomic."""
-    begin, end = f"<!-- {name}:begin -->", f"<!-- {name}:end -->"
-    text = open(path).read() if os.path.exists(path) else ""
-    block = f"{begin}\n{section}{end}"
-    b, e = text.find(begin), text.find(end)
-    if b >= 0 and e > b:
-        text = text[:b] + block + text[e + len(end):]
-    else:
-        if not text:
-            text = "# Benchmarks\n\nFigures measured on the project's 2-core Debian 12 machine.\n"
-        text += "\n" + block + "\n"
-    tmp = path + ".tmp"
-    with open(tmp, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
-
-
 def settle_text(s, unit="iteration"):
     if s["iteration"] is None:
         return "never (last value outside the band)"
