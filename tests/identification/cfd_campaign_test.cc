@@ -31,12 +31,7 @@ using ::testing::HasSubstr;
 
 fs::path DataDir() { return kelvin::testing::SourceDir() / "data/cases/captive_cfd"; }
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using kelvin::testing::ReadText;
 
 // The coarse block campaign with its run directories in `dir`.
 fs::path WriteCampaign(const fs::path& dir, const std::string& extra_tests = "") {

@@ -32,12 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using kelvin::testing::ReadText;
 
 void Replace(std::string& text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);

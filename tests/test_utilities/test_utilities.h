@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 namespace kelvin::testing {
@@ -52,6 +54,14 @@ inline std::filesystem::path SourceDir() { return EnvPath("KELVIN_SOURCE_DIR", K
 inline std::filesystem::path ToolsDir() { return EnvPath("KELVIN_TOOLS_DIR", KELVIN_DEFAULT_TOOLS_DIR); }
 // ../shared beside the repository (published reference data), if present.
 inline std::filesystem::path SharedDir() { return SourceDir().parent_path() / "shared"; }
+
+// The whole content of a file (empty if it cannot be read).
+inline std::string ReadText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
 
 struct CommandResult {
   int exit_code = -1;

@@ -90,12 +90,7 @@ void WritePolyMesh(const Mesh& mesh, const fs::path& dir, bool binary) {
   }
 }
 
-std::string ReadText(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using kelvin::testing::ReadText;
 void WriteText(const fs::path& p, const std::string& s) {
   std::ofstream out(p, std::ios::binary);
   out << s;

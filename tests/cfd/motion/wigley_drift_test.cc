@@ -20,12 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using kelvin::testing::ReadText;
 
 PlanarLoad Drift(const fs::path& poly_mesh, double degrees, int steps) {
   std::string text = ReadText(kelvin::testing::SourceDir() / "data/cases/captive_cfd/wigley_case.yaml");
