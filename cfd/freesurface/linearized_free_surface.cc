@@ -201,7 +201,19 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
       const double linear = to_u / (to_u + to_d) * (eta_[d] - eta_[u]);
       return 0.5 * (lud + linear);
     };
+    // Faces fed across the hull waterline (extrapolated inflow edge) stay
+    // first order on every edge. Their implicit diagonal is only the time
+    // term plus the inflow from the other water faces (the waterline inflow
+    // cancels most of the outflow coefficient), while a high-order
+    // correction scales with the full outflow: lagged, it is amplified by
+    // that ratio (about 1/cell width along a sloping stern waterline) and
+    // diverges within a few steps at patch Courant numbers above about 2.
+    waterline_fed_.assign(surface_.size(), 0);
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      if (edges[e].neighbour < 0 && extrapolate_rim_[e] && edge_flux_[e] < 0.0) waterline_fed_[edges[e].face] = 1;
+    }
     auto correction = [&](std::size_t e, int u, int d, double q_out_of_u) {
+      if (waterline_fed_[u]) return 0.0;
       const double c = unlimited(e, u, d, q_out_of_u);
       if (!limit) return c;
       return std::clamp(eta_[u] + c, eta_min_[u], eta_max_[u]) - eta_[u];

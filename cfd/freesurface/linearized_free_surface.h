@@ -167,6 +167,7 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::vector<Vector3> grad_;
   std::vector<double> edge_flux_;
   std::vector<double> eta_min_, eta_max_;  // limiter range per face
+  std::vector<char> waterline_fed_;       // per face: inflow across the hull waterline (first order)
 };
 
 }  // namespace kelvin::cfd
