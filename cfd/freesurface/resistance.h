@@ -189,7 +189,7 @@ class ResistanceMonitor {
 //     wave_cut_points: 400
 //     double_body: ../db/resistance.h5   # for the wave-making part
 //     steady: {tolerance: 1.0e-3, window: 0, window_steps: 20, min_windows: 2, initial_velocity: false,
-//              ramp_steps: 10}
+//              ramp_steps: 10, rigid_lid_windows: 1}
 // rho and nu come from `physics`, g from the free surface. Throws
 // ConfigError naming the key.
 std::unique_ptr<ResistanceMonitor> LoadResistance(const data::ConfigNode& node, const PimpleSolver& solver,
