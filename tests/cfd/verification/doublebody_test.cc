@@ -69,9 +69,9 @@ struct DoubleBody {
   long cells = 0;
 };
 
-DoubleBody Run(const fs::path& poly_mesh, const fs::path& out,
-               const char* case_file = "data/cases/doublebody/wigley.yaml",
-               double form_factor = kFormFactor, double reynolds = kReynolds) {
+DoubleBody RunDoubleBody(const fs::path& poly_mesh, const fs::path& out,
+                         const char* case_file = "data/cases/doublebody/wigley.yaml",
+                         double form_factor = kFormFactor, double reynolds = kReynolds) {
   RunOptions ro;
   ro.poly_mesh_override = poly_mesh;
   ro.output_override = out;
@@ -103,7 +103,7 @@ DoubleBody Run(const fs::path& poly_mesh, const fs::path& out,
 DoubleBody RunGrid(const ScopedTempDir& tmp, int level) {
   const MeshCase mc = LoadMeshCase(SourceDir() / "data/cases/doublebody/wigley_mesh.yaml");
   RunMeshCase(mc, 3, tmp / "grids");
-  return Run(tmp / "grids" / ("grid" + std::to_string(level)) / "constant/polyMesh", tmp / "run");
+  return RunDoubleBody(tmp / "grids" / ("grid" + std::to_string(level)) / "constant/polyMesh", tmp / "run");
 }
 
 TEST(DoubleBodyTest, WigleyFineGrid) {
@@ -125,8 +125,8 @@ TEST(DoubleBodyTest, DtcGrid1) {
   MeshCase mc = LoadMeshCase(SourceDir() / "data/cases/mesh/dtc_snappy.yaml");
   mc.write_vtu = false;
   RunMeshCase(mc, 1, tmp / "grid");
-  const DoubleBody r = Run(tmp / "grid/constant/polyMesh", tmp / "run", "data/cases/doublebody/dtc.yaml",
-                           kDtcFormFactor, kDtcReynolds);
+  const DoubleBody r = RunDoubleBody(tmp / "grid/constant/polyMesh", tmp / "run",
+                                     "data/cases/doublebody/dtc.yaml", kDtcFormFactor, kDtcReynolds);
   const double c_v_ref = kDtcFormFactor * IttcFrictionLine(kDtcReynolds);
   EXPECT_TRUE(r.settled);
   EXPECT_NEAR(r.C_T, c_v_ref, 0.05 * c_v_ref);
