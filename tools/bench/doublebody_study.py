@@ -236,6 +236,19 @@ def dtc_section(kelvin, logs, rerun, ratio_tolerance):
         layer_lines.append(f"- grid {g}: " + "; ".join(m))
     family = open(os.path.join(grids, "family.txt")).read().rstrip()
     ct_exp = DTC["measured_ct"]
+    ref = DTC["form_factor"] * cf0
+    verdict = (f"Grid 1: C_F / C_F0 = {fine['C_F'] / cf0:.3f}, C_V / ((1 + k) C_F0) = {fine['C_T'] / ref:.3f} "
+               f"({'within' if abs(fine['C_T'] / ref - 1) <= 0.05 else 'OUTSIDE'} 5%), C_P / C_V = "
+               f"{fine['C_P'] / fine['C_T']:.3f} (the form factor implies k / (1 + k) = "
+               f"{(DTC['form_factor'] - 1) / DTC['form_factor']:.3f} for the viscous pressure share).")
+    for line in table.splitlines():
+        w = line.split()
+        if w and w[0] == "C_T" and len(w) > 6:
+            try:
+                verdict += (f" Richardson-extrapolated C_T = {float(w[6]):.4e}, "
+                            f"{float(w[6]) / ref:.3f} of (1 + k) C_F0.")
+            except ValueError:
+                pass
     return f"""## Double-body resistance: DTC snappy grid family with GCI (issue 5 acceptance 3, `kelvin gci`)
 
 Run by `tools/bench/doublebody_study.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC, {machine()}, serial,
@@ -263,6 +276,8 @@ Layers (quality.txt of each grid):
 
 ITTC-57: C_F0 = {cf0:.4e}, (1 + k) C_F0 = {DTC['form_factor'] * cf0:.4e}. Model test (Table 4 above): C_T = {ct_exp:.3e}
 including the wave part C_W = 0.336e-3; grid 1 C_V / C_T,exp = {fine['C_T'] / ct_exp:.3f}.
+
+{verdict}
 
 Three-grid study (`kelvin gci`, Celik et al. 2008; grid 1 finest):
 
