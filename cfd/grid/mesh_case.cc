@@ -9,6 +9,7 @@
 
 #include "cfd/geometry/hydrostatics.h"
 #include "cfd/grid/mesh_writer.h"
+#include "cfd/grid/spacing.h"
 #include "data/schema/atomic_file.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
@@ -65,13 +66,20 @@ void ParseStructured(const ConfigNode& s, HullGridOptions& o) {
 }
 
 void ParseSnappy(const ConfigNode& s, SnappyOptions& o) {
-  s.ExpectKeys({"base_cells_per_length", "hull_level", "wake_level", "layers", "expansion_ratio",
-                "feature_angle", "openfoam_bashrc"});
+  s.ExpectKeys({"base_cells_per_length", "hull_level", "wake_level", "near_level", "layers",
+                "expansion_ratio", "feature_angle", "openfoam_bashrc"});
   o.base_cells_per_length = Integer(s, "base_cells_per_length", o.base_cells_per_length, 2, 200);
   o.hull_level = Integer(s, "hull_level", o.hull_level, 0, 8);
   o.wake_level = Integer(s, "wake_level", o.wake_level, 0, 8);
   if (o.wake_level > o.hull_level)
     s["wake_level"].Fail(fmt::format("at most hull_level = {}", o.hull_level));
+  if (auto near = s.Find("near_level")) {
+    const int n = near->As<int>();
+    if (n < o.wake_level || n > o.hull_level)
+      near->Fail(fmt::format("an integer in [wake_level, hull_level] = [{}, {}]", o.wake_level,
+                             o.hull_level));
+    o.near_level = n;
+  }
   if (auto layers = s.Find("layers")) {
     if (layers->IsScalar() && layers->yaml().Scalar() == "auto") {
       o.layers = SnappyOptions::kAutoLayers;
@@ -236,6 +244,9 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
     if (c.method == MeshMethod::kStructured) sections = std::make_unique<SurfaceSections>(surface);
   }
   std::vector<GridSummary> grids;
+  // snappy: grid 1's layer count and outermost-layer ratio for the family.
+  int family_layers = c.snappy.layers;
+  double family_final_ratio = c.snappy.final_layer_ratio;
   for (int g = 1; g <= family; ++g) {
     const double coarsen = std::pow(c.family_ratio, g - 1);
     GridSummary s;
@@ -265,16 +276,33 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
       SnappyOptions o = c.snappy;
       o.base_cells_per_length =
           std::max(2, static_cast<int>(std::lround(c.snappy.base_cells_per_length / coarsen)));
+      // The coarser grids keep grid 1's layers (count and thickness relative
+      // to the cells), so the family stays geometrically similar: the
+      // first-layer y+ grows with the cells, as in the structured family.
+      o.layers = family_layers;
+      o.final_layer_ratio = family_final_ratio;
       SnappyRun run;
       mesh = std::make_unique<Mesh>(RunSnappy(surface, o, s.directory, &run));
+      family_layers = run.layers;
+      family_final_ratio = run.final_layer_ratio;
       s.seconds = run.seconds_block_mesh + run.seconds_features + run.seconds_snappy;
       s.snappy = run;
       length = LoadHullPlacement(c.ship_file).Lpp;
       extra += fmt::format(
           "blockMesh {:.2f} s, surfaceFeatureExtract {:.2f} s, snappyHexMesh {:.2f} s\n"
-          "first layer {:.4g} m (y+ {:.3g}), {} layers requested, expansion {:.3g}\n",
+          "base cells per length {}, hull cell {:.4g} m (level {})\n"
+          "layers requested: {}, expansion {:.3g}, outermost {:.3g} of the hull cell, first layer "
+          "{:.4g} m (first cell centre y+ {:.3g}; target {:.3g})\n",
           run.seconds_block_mesh, run.seconds_features, run.seconds_snappy,
-          run.first_layer_thickness, o.y_plus, run.layers, o.expansion_ratio);
+          o.base_cells_per_length, run.hull_cell, o.hull_level, run.layers, o.expansion_ratio,
+          run.final_layer_ratio, run.first_layer_thickness,
+          YPlusAt(0.5 * run.first_layer_thickness, c.reynolds, length), o.y_plus);
+      if (run.layers_kept >= 0) {
+        extra += fmt::format(
+            "layers kept by snappyHexMesh: {:.2f} of {} per hull face on average, {:.1f}% of the "
+            "requested thickness\n",
+            run.layers_kept, run.layers, run.thickness_kept_percent);
+      }
       extra +=
           fmt::format("hull surface volume below z = 0: {:.9g} m^3\n", UnderwaterVolume(surface));
     }

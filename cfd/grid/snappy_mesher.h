@@ -28,11 +28,21 @@ struct SnappyOptions {
   // between them.
   int hull_level = 3;
   int wake_level = 1;
-  // Prism layers on the hull: count, expansion ratio, first layer from y+.
-  // layers = -1 (auto): enough layers for the outermost to reach half the
-  // hull surface cell size, so that snappyHexMesh can fit them.
+  // Level of the near-hull box; kAutoLevel: (hull_level + wake_level + 1) / 2.
+  static constexpr int kAutoLevel = -1;
+  int near_level = kAutoLevel;
+  // Prism layers on the hull, sized relative to the hull cell size
+  // (snappyHexMesh relativeSizes, finalLayerThickness = final_layer_ratio):
+  // the layers shrink by the expansion ratio from the outermost towards the
+  // wall. final_layer_ratio = 0 (from y+): the ratio that makes the first
+  // layer the height for the target y_plus (FirstCellHeight). layers = -1
+  // (auto): the fewest layers whose outermost reaches half the hull cell
+  // size. Relative sizes let snappyHexMesh keep the layers on most of the
+  // hull and, with the layer count and ratio of grid 1 kept, make a grid
+  // family geometrically similar (the first-layer y+ grows with the cells).
   static constexpr int kAutoLayers = -1;
   int layers = kAutoLayers;
+  double final_layer_ratio = 0.0;
   double expansion_ratio = 1.2;
   double y_plus = 60.0;
   double reynolds = 5e6;
@@ -49,13 +59,38 @@ struct SnappyRun {
   double seconds_block_mesh = 0;
   double seconds_features = 0;
   double seconds_snappy = 0;
-  double first_layer_thickness = 0;  // m
+  double hull_cell = 0;              // m, hull surface cell size
+  double first_layer_thickness = 0;  // m, requested (SnappyFirstLayer)
   int layers = 0;                    // requested prism layers
+  double final_layer_ratio = 0;      // requested outermost layer / hull cell
+  // What snappyHexMesh kept, from the layer table at the end of its log
+  // (negative when the log has no table): mean layers per hull face and the
+  // kept share of the requested layer thickness (%).
+  double layers_kept = -1;
+  double thickness_kept_percent = -1;
 };
 
 // The number of layers WriteSnappyCase requests for `options` and a hull of
 // length `length`.
 int SnappyLayerCount(const SnappyOptions& options, double length);
+
+// The hull surface cell size length / base_cells_per_length / 2^hull_level.
+double SnappyHullCell(const SnappyOptions& options, double length);
+
+// The outermost layer thickness relative to the hull cell that
+// WriteSnappyCase requests (options.final_layer_ratio, or the ratio that
+// makes the first layer FirstCellHeight(y_plus)).
+double SnappyFinalLayerRatio(const SnappyOptions& options, double length);
+
+// The requested first layer thickness (m):
+// final ratio * hull cell / expansion_ratio^(layers - 1).
+double SnappyFirstLayer(const SnappyOptions& options, double length);
+
+// Reads the final layer table of a snappyHexMesh log ("hull <faces> <mean
+// layers> <thickness> <percent>"): mean layers kept on `patch` and the kept
+// share of the layer thickness in %. Returns false if the log has no table.
+bool ReadSnappyLayerTable(const std::filesystem::path& log, const std::string& patch,
+                          double* layers, double* thickness_percent);
 
 // Writes the case into `case_dir` (created; an existing polyMesh there is
 // replaced): constant/triSurface/hull.stl and the system dictionaries. The

@@ -73,7 +73,8 @@ TEST(MeshCaseTest, ShippedCaseFilesParse) {
   EXPECT_EQ(d.snappy.layers, SnappyOptions::kAutoLayers);
   // Re = U Lpp / nu with the DTC ship file's Lpp and nu.
   EXPECT_NEAR(d.reynolds, 1.668 * 5.976 / 1.09e-6, 1e-6 * d.reynolds);
-  EXPECT_EQ(d.snappy.hull_level, 4);
+  EXPECT_EQ(d.snappy.hull_level, 5);
+  EXPECT_EQ(d.snappy.near_level, 3);
 }
 
 TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
@@ -126,6 +127,11 @@ TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
   EXPECT_THAT(
       ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  snappy: {hull_level: 2, wake_level: 3}")); }),
       HasSubstr("key 'mesh.snappy.wake_level' = '3': expected at most hull_level = 2"));
+  EXPECT_THAT(ErrorOf([] {
+                Parse(Edit("  y_plus: 1.0", "  snappy: {hull_level: 3, wake_level: 1, near_level: 5}"));
+              }),
+              HasSubstr("key 'mesh.snappy.near_level' = '5': expected an integer in [wake_level, "
+                        "hull_level] = [1, 3]"));
   EXPECT_THAT(
       ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  snappy: {layers: -3}")); }),
       HasSubstr("key 'mesh.snappy.layers' = '-3': expected 'auto' or an integer in [0, 50]"));

@@ -49,19 +49,61 @@ TEST(SnappyMesherTest, DictionariesDescribeTheDoubleBodyDomain) {
   for (const char* patch : {"freeSurface", "inlet", "outlet", "side", "bottom"})
     EXPECT_THAT(block, HasSubstr(patch));
   const std::string snappy = Slurp(dir / "system/snappyHexMeshDict");
-  EXPECT_THAT(snappy,
-              HasSubstr(fmt::format("firstLayerThickness {:.6g};", FirstCellHeight(30, 4e6, 2.0))));
+  // Layers relative to the hull cells (L / 10 / 2^3 = 25 mm): five layers
+  // at expansion 1.2 whose first is the height for y+ 30.
+  const double first = FirstCellHeight(30, 4e6, 2.0);
+  EXPECT_THAT(snappy, HasSubstr("relativeSizes true;"));
+  EXPECT_THAT(snappy, HasSubstr(fmt::format("finalLayerThickness {:.6g};",
+                                            first * std::pow(1.2, 4) / 0.025)));
+  EXPECT_NEAR(SnappyFirstLayer(o, 2.0), first, 1e-12);
+  EXPECT_THAT(snappy, HasSubstr("expansionRatio 1.2;"));
   EXPECT_THAT(snappy, HasSubstr("nSurfaceLayers 5;"));
   EXPECT_THAT(snappy, HasSubstr("kelvinWake"));
-  EXPECT_THAT(snappy, HasSubstr("relativeSizes false;"));
+  // Hull level 3, wake level 1: the near-hull box gets level 2 unless set.
+  EXPECT_THAT(snappy, HasSubstr("nearHull { mode inside; levels ((1e15 2)); }"));
   EXPECT_TRUE(std::filesystem::exists(dir / "constant/triSurface/hull.stl"));
-  // Auto layers reach half the hull cell size: L / 10 / 2^3 / 2 = 12.5 mm
-  // from the first layer at expansion 1.2.
+  o.near_level = 3;
+  WriteSnappyCase(hull, o, dir.path());
+  EXPECT_THAT(Slurp(dir / "system/snappyHexMeshDict"),
+              HasSubstr("nearHull { mode inside; levels ((1e15 3)); }"));
+  // A given outermost layer (a coarser grid of a family keeps grid 1's):
+  // half a cell, so the first is 12.5 mm / 1.2^4.
+  o.final_layer_ratio = 0.5;
+  EXPECT_NEAR(SnappyFirstLayer(o, 2.0), 0.0125 / std::pow(1.2, 4), 1e-12);
+  o.final_layer_ratio = 0;
+  // Auto layers: the fewest whose outermost reaches half a hull cell
+  // (12.5 mm) from the first layer for the target y+.
   o.layers = SnappyOptions::kAutoLayers;
   const int n = SnappyLayerCount(o, 2.0);
-  const double first = FirstCellHeight(30, 4e6, 2.0);
   EXPECT_GE(first * std::pow(1.2, n - 1), 0.0125);
   EXPECT_LT(first * std::pow(1.2, n - 2), 0.0125);
+  EXPECT_NEAR(SnappyFirstLayer(o, 2.0), first, 1e-12);
+  o.near_level = 4;  // above hull_level
+  EXPECT_THROW(o.Validate(), ConfigError);
+}
+
+// The layer table at the end of a snappyHexMesh log (OpenFOAM v1912 format):
+// the table before layer addition ("avg thickness") is not the result.
+TEST(SnappyMesherTest, ReadsTheLayersSnappyKept) {
+  ScopedTempDir dir;
+  std::ofstream(dir / "log.snappyHexMesh")
+      << "patch faces    layers avg thickness[m]\n"
+         "                     near-wall overall\n"
+         "----- -----    ------ --------- -------\n"
+         "hull 4068     6      0.00776   0.0767\n"
+         "Layer addition iteration 0\n"
+         "patch faces    layers   overall thickness\n"
+         "                       [m]       [%]\n"
+         "----- -----    ------   ---       ---\n"
+         "hull 4068     5.05     0.0665    86.6\n"
+         "\n"
+         "Layer mesh : cells:69986  faces:223574  points:84155\n";
+  double layers = 0, percent = 0;
+  ASSERT_TRUE(ReadSnappyLayerTable(dir / "log.snappyHexMesh", "hull", &layers, &percent));
+  EXPECT_DOUBLE_EQ(layers, 5.05);
+  EXPECT_DOUBLE_EQ(percent, 86.6);
+  EXPECT_FALSE(ReadSnappyLayerTable(dir / "log.snappyHexMesh", "rudder", &layers, &percent));
+  EXPECT_FALSE(ReadSnappyLayerTable(dir / "missing.log", "hull", &layers, &percent));
 }
 
 TEST(SnappyMesherTest, MissingOpenFoamIsOneClearError) {
@@ -144,12 +186,27 @@ TEST(SnappyMesherTest, DtcGridQualityReport) {
     // CI size: coarser background and one level less on the hull.
     c.snappy.base_cells_per_length = 8;
     c.snappy.hull_level = 3;
+    c.snappy.near_level = 2;
     c.snappy.wake_level = 1;
   }
   c.write_vtu = false;
   ScopedTempDir dir;
-  const auto grids = RunMeshCase(c, 1, dir.path());
+  // A relative output directory, as `kelvin mesh -o grids/dtc` gives it: the
+  // OpenFOAM tools run inside it, so their logs must not be looked up
+  // relative to it a second time (the run used to fail with "cannot find
+  // log.blockMesh").
+  const std::filesystem::path cwd = std::filesystem::current_path();
+  std::filesystem::current_path(dir.path());
+  std::vector<GridSummary> grids;
+  try {
+    grids = RunMeshCase(c, 1, "grids/dtc");
+  } catch (...) {
+    std::filesystem::current_path(cwd);
+    throw;
+  }
+  std::filesystem::current_path(cwd);
   ASSERT_EQ(grids.size(), 1u);
+  EXPECT_TRUE(std::filesystem::exists(dir / "grids/dtc/log.snappyHexMesh"));
   const GridSummary& g = grids[0];
   fmt::print("{}", g.report);
   EXPECT_GT(g.quality.min_volume, 0.0);
@@ -179,6 +236,10 @@ TEST(SnappyMesherTest, DtcGridQualityReport) {
   EXPECT_THAT(g.report, HasSubstr("skewness max"));
   EXPECT_THAT(g.report, HasSubstr("y+ estimate"));
   EXPECT_GT(g.y_plus.min, 0.0);
+  // The layer table of the log is read back into the report.
+  EXPECT_GT(g.snappy.layers_kept, 0.0);
+  EXPECT_LE(g.snappy.layers_kept, g.snappy.layers);
+  EXPECT_THAT(g.report, HasSubstr("layers kept by snappyHexMesh"));
 }
 
 }  // namespace
