@@ -75,6 +75,21 @@ def plot(directory):
         fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
         for col, name in ((1, "R_T"), (2, "R_F"), (3, "R_P"), (4, "R_WL (separate)")):
             a1.plot(h[:, 0], h[:, col], label=name)
+        # The start-up transient (forces of the impulsive start, hundreds of
+        # times the steady values) would flatten the plot: scale the axis to
+        # the second half of the run.
+        late = h[len(h) // 2:, 1:5]
+        late = late[np.isfinite(late)]
+        if late.size:
+            lo, hi = float(late.min()), float(late.max())
+            pad = 0.5 * (hi - lo) + 0.05 * max(abs(lo), abs(hi), 1e-12)
+            a1.set_ylim(lo - pad, hi + pad)
+        release = scalar(f, "release_time")
+        if math.isfinite(release):
+            for ax in (a1, a2):
+                ax.axvline(release, color="0.5", ls=":", lw=1.0)
+            a1.annotate("rigid lid released", (release, 1.0), xycoords=("data", "axes fraction"),
+                        xytext=(3, -12), textcoords="offset points", fontsize=8, color="0.3")
         a1.set_ylabel("N")
         a1.legend()
         a1.grid(alpha=0.3)

@@ -131,8 +131,9 @@ void LinearizedFreeSurface::Update(const BcContext& ctx, std::span<const double>
   // so the flux computed from them is the one eta is updated from.
   if (!armed_) {
     for (int i = 0; i < surface_.size(); ++i) {
-      fraction()[i] = 1.0;
+      fraction()[i] = rigid_lid_ ? 0.0 : 1.0;
       ref_value()[i] = options_.g * eta_[i] + SurfacePressure(i, ctx.time);
+      ref_gradient()[i] = 0.0;
     }
   }
   Mixed<double>::Update(ctx, cell_values);
@@ -143,6 +144,19 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
   AdvanceTime(ctx.time);
   KELVIN_CHECK(coupling.dt > 0.0, "positive time step");
   const int n = surface_.size();
+  const Patch& patch = mesh_.patches()[patch_index_];
+  if (rigid_lid_) {
+    // Zero flux: the normal pressure gradient balances the predicted flux,
+    // F_f = F_HbyA,f - rAU_f |S_f| dp/dn = 0.
+    for (int i = 0; i < n; ++i) {
+      const int f = patch.start + i;
+      fraction()[i] = 0.0;
+      ref_gradient()[i] = coupling.flux_HbyA[f] / (coupling.rAUf[f] * mesh_.face_area_magnitudes()[f]);
+    }
+    armed_ = true;
+    Mixed<double>::Update(ctx, {});
+    return;
+  }
   const double t = ctx.time;
   const double dt = coupling.dt;
   const bool bdf2 = coupling.backward && eta_old_.size() >= 2;
@@ -201,7 +215,19 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
       const double linear = to_u / (to_u + to_d) * (eta_[d] - eta_[u]);
       return 0.5 * (lud + linear);
     };
+    // Faces fed across the hull waterline (extrapolated inflow edge) stay
+    // first order on every edge. Their implicit diagonal is only the time
+    // term plus the inflow from the other water faces (the waterline inflow
+    // cancels most of the outflow coefficient), while a high-order
+    // correction scales with the full outflow: lagged, it is amplified by
+    // that ratio (about 1/cell width along a sloping stern waterline) and
+    // diverges within a few steps at patch Courant numbers above about 2.
+    waterline_fed_.assign(surface_.size(), 0);
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      if (edges[e].neighbour < 0 && extrapolate_rim_[e] && edge_flux_[e] < 0.0) waterline_fed_[edges[e].face] = 1;
+    }
     auto correction = [&](std::size_t e, int u, int d, double q_out_of_u) {
+      if (waterline_fed_[u]) return 0.0;
       const double c = unlimited(e, u, d, q_out_of_u);
       if (!limit) return c;
       return std::clamp(eta_[u] + c, eta_min_[u], eta_max_[u]) - eta_[u];
@@ -247,10 +273,10 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
       diag[i] += rate - a_t / dt;
     }
   }
-  const Patch& patch = mesh_.patches()[patch_index_];
   for (int i = 0; i < n; ++i) {
     const int f = patch.start + i;
     const double mag = mesh_.face_area_magnitudes()[f];
+    ref_gradient()[i] = 0.0;
     KELVIN_CHECK(diag[i] > 0.0, "positive free-surface diagonal");
     dt_eff_[i] = 1.0 / diag[i];
     eta_star_[i] = dt_eff_[i] * known[i];
@@ -266,6 +292,10 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
 
 void LinearizedFreeSurface::CorrectAfterFlux(const BcContext&, std::span<const double> face_flux) {
   if (!armed_) return;
+  if (rigid_lid_) {
+    armed_ = false;
+    return;
+  }
   const Patch& patch = mesh_.patches()[patch_index_];
   for (int i = 0; i < surface_.size(); ++i) {
     const int f = patch.start + i;
@@ -280,7 +310,8 @@ std::vector<std::pair<std::string, std::vector<double>>> LinearizedFreeSurface::
 
 std::vector<double> LinearizedFreeSurface::State() const {
   const std::size_t n = eta_.size();
-  std::vector<double> s = {time_, started_ ? 1.0 : 0.0, static_cast<double>(eta_old_.size())};
+  std::vector<double> s = {time_, started_ ? 1.0 : 0.0, static_cast<double>(eta_old_.size()),
+                           rigid_lid_ ? 1.0 : 0.0};
   s.insert(s.end(), eta_.begin(), eta_.end());
   for (std::size_t l = 0; l < 2; ++l) {
     if (l < eta_old_.size()) {
@@ -303,18 +334,22 @@ void LinearizedFreeSurface::SetState(std::span<const double> s) {
     armed_ = false;
     return;
   }
-  if (s.size() != 3 + 3 * n) {
+  // Header of 4 values (with the rigid-lid flag) or 3 (older checkpoints).
+  const std::size_t header = s.size() == 4 + 3 * n ? 4 : 3;
+  if (s.size() != header + 3 * n) {
     throw DataFileError(
         fmt::format("free-surface state of patch '{}' has {} values; expected {} for {} faces",
-                    surface_.name(), s.size(), 3 + 3 * n, n));
+                    surface_.name(), s.size(), 4 + 3 * n, n));
   }
   time_ = s[0];
   started_ = s[1] != 0.0;
   const auto levels = static_cast<std::size_t>(s[2]);
-  eta_.assign(s.begin() + 3, s.begin() + 3 + static_cast<std::ptrdiff_t>(n));
+  rigid_lid_ = header == 4 && s[3] != 0.0;
+  eta_.assign(s.begin() + static_cast<std::ptrdiff_t>(header),
+              s.begin() + static_cast<std::ptrdiff_t>(header + n));
   eta_old_.clear();
   for (std::size_t l = 0; l < std::min<std::size_t>(levels, 2); ++l) {
-    const auto first = s.begin() + static_cast<std::ptrdiff_t>(3 + (l + 1) * n);
+    const auto first = s.begin() + static_cast<std::ptrdiff_t>(header + (l + 1) * n);
     eta_old_.emplace_back(first, first + static_cast<std::ptrdiff_t>(n));
   }
   armed_ = false;

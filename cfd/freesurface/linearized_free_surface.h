@@ -126,12 +126,22 @@ class LinearizedFreeSurface : public Mixed<double> {
   void CorrectAfterFlux(const BcContext& ctx, std::span<const double> face_flux) override;
   std::string type() const override { return "linearizedFreeSurface"; }
   std::vector<std::pair<std::string, std::vector<double>>> FaceFields() const override;
-  // [time, old levels, eta, eta^n, eta^{n-1}] (old levels padded with zeros).
+  // [time, started, old levels, rigid lid, eta, eta^n, eta^{n-1}] (old
+  // levels padded with zeros); SetState also reads the older layout without
+  // the rigid-lid flag.
   // SetState of an empty state (the checkpoint of a run without the free
   // surface, e.g. a converged double body) starts from calm water.
   std::vector<double> State() const override;
   void SetState(std::span<const double> state) override;
 
+  // Rigid lid: while set, the patch passes no flux (the double-body
+  // condition: zero normal flux, p free) and eta stays as it is. Steady
+  // resistance runs start this way and then release the surface, because an
+  // impulsive start of the free-surface flow raises a bow wave several times
+  // the stagnation head that diverges on hull grids (cfd/freesurface/
+  // resistance.h). Kept in the checkpoint state.
+  void SetRigidLid(bool rigid) { rigid_lid_ = rigid; }
+  bool rigid_lid() const { return rigid_lid_; }
   // Wave elevation per patch face (m), patch face order.
   const std::vector<double>& eta() const { return eta_; }
   // Sets eta (initial condition); the next time step takes it as eta^n.
@@ -159,6 +169,7 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::vector<std::vector<double>> eta_old_;  // eta^n, eta^{n-1}
   double time_ = 0.0;
   bool started_ = false;
+  bool rigid_lid_ = false;
   // Set by PreparePressureSolve, consumed by CorrectAfterFlux.
   bool armed_ = false;
   std::vector<double> eta_star_;
@@ -167,6 +178,7 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::vector<Vector3> grad_;
   std::vector<double> edge_flux_;
   std::vector<double> eta_min_, eta_max_;  // limiter range per face
+  std::vector<char> waterline_fed_;       // per face: inflow across the hull waterline (first order)
 };
 
 }  // namespace kelvin::cfd

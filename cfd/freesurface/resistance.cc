@@ -182,23 +182,44 @@ ResistanceMonitor::ResistanceMonitor(const PimpleSolver& solver, ResistanceOptio
     throw ConfigError(fmt::format("min_windows = {}; expected >= 1", options_.min_windows));
   }
   if (options_.ramp_steps < 0) throw ConfigError(fmt::format("ramp_steps = {}; expected >= 0", options_.ramp_steps));
+  if (!(options_.rigid_lid_windows >= 0.0) || !std::isfinite(options_.rigid_lid_windows)) {
+    throw ConfigError(fmt::format("rigid_lid_windows = {}; expected >= 0 windows", options_.rigid_lid_windows));
+  }
+  if (options_.rigid_lid_windows > 0.0 && free_surface_ < 0) {
+    throw ConfigError(fmt::format("rigid_lid_windows = {}; needs free_surface (a double body has no lid to release)",
+                                  options_.rigid_lid_windows));
+  }
 }
 
 const LinearizedFreeSurface* ResistanceMonitor::FreeSurface(const PimpleSolver& solver) const {
   return free_surface_ < 0 ? nullptr : dynamic_cast<const LinearizedFreeSurface*>(&solver.p().bc(free_surface_));
 }
 
+void ResistanceMonitor::StartPhase(double time) {
+  start_time_ = time;
+  phase_steps_ = 0;
+  convergence_.emplace(convergence_->window(), options_.tolerance, options_.window_steps);
+}
+
 void ResistanceMonitor::Start(PimpleSolver& solver, bool restarted) {
-  start_time_ = solver.time();
+  StartPhase(solver.time());
   started_ = true;
+  if (free_surface_ >= 0 && options_.rigid_lid_windows > 0.0) {
+    auto* fs = dynamic_cast<LinearizedFreeSurface*>(&solver.p().bc(free_surface_));
+    if (!restarted) fs->SetRigidLid(true);
+    if (fs->rigid_lid()) {
+      lid_ = fs;
+      rigid_until_ = solver.time() + options_.rigid_lid_windows * convergence_->window();
+    }
+  }
   if (restarted || !options_.initial_velocity) return;
   VectorField& U = solver.U();
   for (int i = 0; i < solver.mesh().n_cells(); ++i) U[i] = options_.inflow;
 }
 
-double ResistanceMonitor::TimeStep(int i, double dt) const {
-  if (options_.ramp_steps <= 1 || i >= options_.ramp_steps) return dt;
-  return dt * (i + 1) / options_.ramp_steps;
+double ResistanceMonitor::TimeStep(double dt) const {
+  if (options_.ramp_steps <= 1 || phase_steps_ >= options_.ramp_steps) return dt;
+  return dt * (phase_steps_ + 1) / options_.ramp_steps;
 }
 
 bool ResistanceMonitor::Record(const PimpleSolver& solver, const Vector3& pressure, const Vector3& viscous) {
@@ -211,6 +232,18 @@ bool ResistanceMonitor::Record(const PimpleSolver& solver, const Vector3& pressu
     rwl = WaterlineForce(fs->surface(), eta, hull_, options_.rho, fs->options().g).dot(direction_);
   }
   const double forces[3] = {rp + rf, rp, rf};
+  ++phase_steps_;
+  if (lid_) {
+    // Rigid-lid phase: no convergence test; release when its time is up.
+    history_.push_back({solver.time(), rp + rf, rf, rp, rwl, std::nan(""), std::nan("")});
+    if (solver.time() >= rigid_until_ * (1 - 1e-12)) {
+      lid_->SetRigidLid(false);
+      lid_ = nullptr;
+      release_time_ = solver.time();
+      StartPhase(solver.time());
+    }
+    return false;
+  }
   convergence_->Add(solver.time(), forces, eta);
   const bool long_enough = solver.time() - start_time_ >= options_.min_windows * convergence_->window() * (1 - 1e-9);
   if (!converged_ && long_enough && convergence_->Converged()) {
@@ -244,6 +277,7 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Pi
   scalar("tolerance", convergence_->tolerance(), "1", "relative change allowed over one window");
   scalar("window", convergence_->window(), "s", "pseudo-time window of the criterion (one flow-through)");
   scalar("flow_through", flow_through_, "s", "mesh extent along the inflow / U");
+  scalar("release_time", release_time_, "s", "pseudo-time at which the rigid lid was released (NaN: never held)");
   std::string summary = fmt::format(
       "resistance on '{}': R_T = {:.5g} N (R_F {:.5g}, R_P {:.5g}); C_T = {:.5e}, C_F = {:.5e}, C_P = {:.5e} "
       "(S = {:.5g} m^2, U = {:.5g} m/s); {} (force change {:.2e}, eta change {:.2e} over {:.4g} s)",
@@ -339,13 +373,15 @@ std::unique_ptr<ResistanceMonitor> LoadResistance(const data::ConfigNode& node, 
   }
   if (node.Has("steady")) {
     const data::ConfigNode st = node["steady"];
-    st.ExpectKeys({"tolerance", "window", "window_steps", "min_windows", "initial_velocity", "ramp_steps"});
+    st.ExpectKeys({"tolerance", "window", "window_steps", "min_windows", "initial_velocity", "ramp_steps",
+                   "rigid_lid_windows"});
     o.window_steps = st.Get<int>("window_steps", o.window_steps);
     if (st.Has("tolerance")) o.tolerance = st.GetPositive("tolerance");
     if (st.Has("window")) o.window = st.Get<double>("window");
     if (st.Has("min_windows")) o.min_windows = st.GetPositive("min_windows");
     o.initial_velocity = st.Get<bool>("initial_velocity", o.initial_velocity);
     o.ramp_steps = st.Get<int>("ramp_steps", o.ramp_steps);
+    o.rigid_lid_windows = st.Get<double>("rigid_lid_windows", o.rigid_lid_windows);
   }
   if (!o.free_surface_patch.empty()) {
     const int k = solver.mesh().FindPatch(o.free_surface_patch);

@@ -27,6 +27,7 @@
 #include <deque>
 #include <filesystem>
 #include <memory>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -115,7 +116,16 @@ struct ResistanceOptions {
   // Wigley wall-function grid the uniform start diverged within 4 steps at
   // Courant 30 where the start from rest with the time-step ramp did not.
   bool initial_velocity = false;
-  int ramp_steps = 0;            // time step ramps linearly from dt / ramp_steps to dt
+  // Time step ramps linearly from dt / ramp_steps to dt, at the start and
+  // again when the rigid lid is released.
+  int ramp_steps = 0;
+  // Pseudo-time (in windows) of the rigid-lid start: the free surface passes
+  // no flux (double-body flow) until then and is released with eta = 0. An
+  // impulsive start with the surface free raised a 1.5 m bow wave on the 6 m
+  // Wigley at Fn 0.316 (stagnation head 0.3 m) and diverged; released from
+  // the double-body flow it converged. 0: free from the first step. Skipped
+  // on a restart unless the checkpoint was written during the rigid phase.
+  double rigid_lid_windows = 0.0;
 };
 
 class ResistanceMonitor {
@@ -126,8 +136,8 @@ class ResistanceMonitor {
 
   // Before the time loop: the uniform initial field (unless restarted).
   void Start(PimpleSolver& solver, bool restarted);
-  // Time step of loop step i (0-based) for the case's dt.
-  double TimeStep(int i, double dt) const;
+  // Time step of the next step for the case's dt (the ramp).
+  double TimeStep(double dt) const;
   // After each step: pressure and viscous force on the hull (N, mesh axes).
   // Returns true once the run has converged.
   bool Record(const PimpleSolver& solver, const Vector3& pressure, const Vector3& viscous);
@@ -136,12 +146,17 @@ class ResistanceMonitor {
   std::string Write(const std::filesystem::path& file, const PimpleSolver& solver) const;
 
   bool converged() const { return converged_; }
+  // Pseudo-time at which the rigid lid was released (NaN: not yet, or never held).
+  double release_time() const { return release_time_; }
   int hull_patch() const { return hull_; }
   double speed() const { return speed_; }
   double wetted_area() const { return area_; }
 
  private:
   const LinearizedFreeSurface* FreeSurface(const PimpleSolver& solver) const;
+  // Starts a phase (the run, or the free surface after the rigid lid):
+  // convergence window, minimum duration and time-step ramp count from here.
+  void StartPhase(double time);
 
   ResistanceOptions options_;
   int hull_ = -1;
@@ -151,7 +166,11 @@ class ResistanceMonitor {
   double area_ = 0.0;
   double flow_through_ = 0.0;
   double start_time_ = 0.0;
+  int phase_steps_ = 0;
   bool started_ = false;
+  LinearizedFreeSurface* lid_ = nullptr;  // the surface while it is held rigid
+  double rigid_until_ = 0.0;
+  double release_time_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<SteadyConvergence> convergence_;
   bool converged_ = false;
   int converged_step_ = -1;
@@ -170,7 +189,7 @@ class ResistanceMonitor {
 //     wave_cut_points: 400
 //     double_body: ../db/resistance.h5   # for the wave-making part
 //     steady: {tolerance: 1.0e-3, window: 0, window_steps: 20, min_windows: 2, initial_velocity: false,
-//              ramp_steps: 10}
+//              ramp_steps: 10, rigid_lid_windows: 1}
 // rho and nu come from `physics`, g from the free surface. Throws
 // ConfigError naming the key.
 std::unique_ptr<ResistanceMonitor> LoadResistance(const data::ConfigNode& node, const PimpleSolver& solver,

@@ -680,7 +680,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   for (int i = 0; i < total_steps; ++i) {
-    const StepSummary s = solver.Step(resistance ? resistance->TimeStep(i, c.dt) : c.dt);
+    const StepSummary s = solver.Step(resistance ? resistance->TimeStep(c.dt) : c.dt);
     summary.outer_iterations += s.outer_iterations;
     ++summary.steps;
     if (!s.finite) {

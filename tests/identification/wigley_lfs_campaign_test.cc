@@ -150,7 +150,7 @@ INSTANTIATE_TEST_SUITE_P(
                      "wigley_lfs_campaign.yaml", "../results/wigley_lfs"},
         // The quickstart's coarse campaign (tools/quickstart stage 3).
         CampaignCase{"wigley_quick", "wigley_quick_mesh.yaml", "wigley_quick_case.yaml",
-                     "../../../build/grids/wigley_quick/constant/polyMesh",
+                     "../../../build/grids/wigley_captive_quick/constant/polyMesh",
                      "wigley_quick_campaign.yaml", "../../../results/quickstart/wigley_cfd"}),
     [](const ::testing::TestParamInfo<CampaignCase>& param) { return std::string(param.param.name); });
 
