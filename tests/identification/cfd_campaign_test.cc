@@ -202,7 +202,7 @@ TEST(CfdCampaign, MotionRampsOverFewerPeriodsThanTheAnalysisDiscards) {
     ASSERT_NE(at, std::string::npos) << from;
     text.replace(at, from.size(), to);
   };
-  replace("static_drift_deg: [0, 5, -5]\n", "");
+  replace("  static_drift_deg: [0, 5, -5]\n", "");
   replace("  pure_yaw_r_prime: [0.15]\n", "");
   replace("steps_per_period: 40", "steps_per_period: 40\n  motion_ramp_periods: 1");
   replace("sampling: {periods: 2, ramp_periods: 1}", "sampling: {periods: 1, ramp_periods: 2}");
