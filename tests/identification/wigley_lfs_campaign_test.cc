@@ -20,7 +20,7 @@
 // yaw run.
 // The same checks run on the quickstart's coarse campaign
 // (wigley_quick_*.yaml: 5k cells, 48 steps per period).
-// About 7 + 2 CPU-minutes (label slow).
+// About 5.5 + 1.5 CPU-minutes (label slow).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
