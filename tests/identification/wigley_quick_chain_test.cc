@@ -1,12 +1,12 @@
 // The glue of the quickstart's CFD chain on the Wigley hull (tools/quickstart
-// stage 3): the campaign, case and mesh files it runs, and the ship file
+// stage 4): the campaign, case and mesh files it runs, and the ship file
 // data/ships/wigley.yaml that takes the identified derivatives for the
 // maneuvers. The CFD campaign itself (about 1.5 CPU-minutes) is the slow
 // test WigleyLfsCampaign/wigley_quick (wigley_lfs_campaign_test.cc); here
-// the same test matrix is run as a virtual
-// (MMG) campaign of the Wigley ship file through the same commands
-// (kelvin captive -> kelvin identify -> kelvin simulate --derivatives), so
-// every file format and option between the stages is exercised in seconds.
+// the same test matrix is run as a virtual (MMG) campaign of the Wigley ship
+// file through the same commands (kelvin captive -> kelvin identify ->
+// kelvin simulate --derivatives), so every file format and option between
+// the stages is exercised in seconds.
 #include <gtest/gtest.h>
 
 #include <cmath>
