@@ -1,5 +1,7 @@
 #include "identification/campaign_file.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "data/schema/config.h"
@@ -102,8 +104,8 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
   if (f.solver == CampaignFile::Solver::kCfd) {
     if (f.noise > 0) c["noise"].Fail("0: noise is for the mmg solver only");
     const auto n = root["cfd"];
-    n.ExpectKeys({"case", "hull_patches", "centre", "draft", "steps_per_period", "steady_ramp", "steady_duration",
-                  "checkpoint_interval", "jobs", "directory"});
+    n.ExpectKeys({"case", "hull_patches", "centre", "draft", "steps_per_period", "motion_ramp_periods",
+                  "steady_ramp", "steady_duration", "checkpoint_interval", "jobs", "directory"});
     CampaignFile::Cfd& cfd = f.cfd;
     cfd.case_file = n.Get<std::string>("case");
     if (cfd.case_file.is_relative()) cfd.case_file = path.parent_path() / cfd.case_file;
@@ -118,6 +120,13 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
     cfd.draft = n.Has("draft") ? n.GetPositive("draft") : 0.0;
     cfd.steps_per_period = n.Get<int>("steps_per_period", cfd.steps_per_period);
     if (cfd.steps_per_period < 8) n["steps_per_period"].Fail("at least 8 time steps per period");
+    cfd.motion_ramp_periods = n.Get<int>("motion_ramp_periods", f.sampling.ramp_periods);
+    if (cfd.motion_ramp_periods < 0 || cfd.motion_ramp_periods > f.sampling.ramp_periods) {
+      n["motion_ramp_periods"].Fail(fmt::format(
+          "a number of periods from 0 to sampling.ramp_periods = {} (the motion must be at full "
+          "amplitude before the analysed periods)",
+          f.sampling.ramp_periods));
+    }
     if (n.Has("steady_ramp")) cfd.steady_ramp = n.GetPositive("steady_ramp");
     if (n.Has("steady_duration")) cfd.steady_duration = n.GetPositive("steady_duration");
     cfd.checkpoint_interval = n.Get<int>("checkpoint_interval", cfd.checkpoint_interval);

@@ -28,6 +28,9 @@
 //     centre: [0, 0, 0]            # midship in grid axes (m), N is about it
 //     draft: 1.0                   # T of the prime system (default: the ship's d)
 //     steps_per_period: 80         # harmonic runs: dt = period / steps_per_period
+//     motion_ramp_periods: 1       # harmonic runs: the motion ramps up over this many periods
+//                                  # (default sampling.ramp_periods); the analysis still discards
+//                                  # sampling.ramp_periods periods, the rest settle at full motion
 //     steady_ramp: 2.0             # s, start-up of steady runs
 //     steady_duration: 10.0        # s, steady runs after the ramp (dt from the case)
 //     checkpoint_interval: 50      # steps
@@ -67,6 +70,10 @@ struct CampaignFile {
     std::array<double, 3> centre = {0.0, 0.0, 0.0};  // m, grid axes
     double draft = 0;  // m; 0 = the ship's d
     int steps_per_period = 80;
+    // Periods over which a harmonic run's motion ramps up (<= the discarded
+    // sampling.ramp_periods; the periods in between run the full motion and
+    // let the start-up disturbance leave the grid before the analysis).
+    int motion_ramp_periods = 1;
     double steady_ramp = 2.0;       // s
     double steady_duration = 10.0;  // s
     int checkpoint_interval = 50;   // steps

@@ -107,7 +107,65 @@ void EvaluateAll(const sim::ShipParameters& ship, const std::vector<RunData>& ru
   }
 }
 
+// Exponents (a, b) of v' and r' in a hull polynomial term from its name
+// ("Y_vrr" -> (1, 2)); false for names that are not such a term.
+bool TermExponents(std::string_view name, int* a, int* b) {
+  if (name.size() < 3 || name[1] != '_' || (name[0] != 'X' && name[0] != 'Y' && name[0] != 'N'))
+    return false;
+  *a = 0;
+  *b = 0;
+  for (const char ch : name.substr(2)) {
+    if (ch == 'v') {
+      ++*a;
+    } else if (ch == 'r') {
+      ++*b;
+    } else {
+      return false;
+    }
+  }
+  return *a + *b > 0;
+}
+
+std::string Monomial(int a, int b) {
+  auto power = [](std::string_view x, int p) -> std::string {
+    if (p == 0) return "";
+    return p == 1 ? std::string(x) : fmt::format("{}^{}", x, p);
+  };
+  const std::string v = power("v'", a), r = power("r'", b);
+  return v.empty() ? r : (r.empty() ? v : v + " " + r);
+}
+
 }  // namespace
+
+std::array<double, kCoefficientCount> JointExcitation(const CaptiveCampaign& campaign,
+                                                      std::string_view source) {
+  std::vector<std::array<double, 2>> vr;  // (v', r') of every analysed sample
+  double v_max = 0, r_max = 0;
+  for (const CaptiveRun& run : campaign.runs) {
+    const AnalysisWindow w = SelectWindow(run, source);
+    for (std::size_t i = w.begin; i < w.end; ++i) {
+      const BodyKinematics k = KinematicsAt(run.motion, campaign.ship.Lpp, run.time[i]);
+      const double U = std::hypot(k.u, k.v);
+      if (!(U > 0)) continue;
+      vr.push_back({k.v / U, k.r * campaign.ship.Lpp / U});
+      v_max = std::max(v_max, std::abs(vr.back()[0]));
+      r_max = std::max(r_max, std::abs(vr.back()[1]));
+    }
+  }
+  std::array<double, kP> out;
+  for (int i = 0; i < kP; ++i) {
+    int a = 0, b = 0;
+    if (!TermExponents(kNames[i], &a, &b)) {
+      out[i] = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    const double scale = std::pow(v_max, a) * std::pow(r_max, b);
+    double term = 0;
+    for (const auto& s : vr) term = std::max(term, std::abs(std::pow(s[0], a) * std::pow(s[1], b)));
+    out[i] = scale > 0 ? term / scale : 0.0;
+  }
+  return out;
+}
 
 int CoefficientIndex(std::string_view name) {
   for (int i = 0; i < kP; ++i) {
@@ -164,6 +222,12 @@ void JointFitOptions::Validate() const {
   positive("min_noise_fraction", min_noise_fraction);
   positive("max_relative_std_error", max_relative_std_error);
   positive("null_space_tolerance", null_space_tolerance);
+  if (!(min_joint_excitation >= 0 && min_joint_excitation < 1)) {
+    throw ArgumentError(fmt::format(
+        "joint fit option 'min_joint_excitation' = {}: expected a number in [0, 1) (0 turns the "
+        "check off)",
+        min_joint_excitation));
+  }
   for (const auto& [name, b] : bounds) {
     check_name("bounds", name);
     if (!(b.lower < b.upper) || std::isnan(b.lower) || std::isnan(b.upper)) {
@@ -270,6 +334,34 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
   for (const auto& [name, prior] : options.priors) {
     const int i = CoefficientIndex(name);
     if (!held[i]) theta[i] = prior.mean;
+  }
+
+  // Terms the test matrix does not excite (cross terms without combined
+  // runs): flagged before any fit, since model error, not noise, decides
+  // their standard error (joint_fit.h).
+  std::array<bool, kP> unexcited{};
+  const std::array<double, kP> excitation = JointExcitation(campaign, source);
+  for (int i = 0; i < kP; ++i) {
+    int a = 0, b = 0;
+    if (held[i] || options.priors.count(std::string(kNames[i])) ||
+        !(excitation[i] < options.min_joint_excitation) || !TermExponents(kNames[i], &a, &b))
+      continue;
+    unexcited[i] = true;
+    result.note[i] = fmt::format(
+        "not excited by the test matrix: |{}| reaches at most {:.2g} of its scale {} over the "
+        "analysed samples (limit {:g}); no run moves in v' and r' together (yaw with drift, "
+        "circular motion with drift)",
+        Monomial(a, b), excitation[i],
+        a == 0 || b == 0 ? Monomial(a, b)
+                         : fmt::format("max|v'|{} max|r'|{}", a > 1 ? fmt::format("^{}", a) : "",
+                                       b > 1 ? fmt::format("^{}", b) : ""),
+        options.min_joint_excitation);
+    if (options.fix_unidentifiable) {
+      held[i] = true;
+      theta[i] = 0.0;
+      result.status[i] = CoefficientStatus::kNotIdentifiable;
+      result.note[i] += "; term dropped (held at 0)";
+    }
   }
 
   // Noise level per run and channel (prime units); first pass: channel RMS.
@@ -492,7 +584,7 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
         for (int a = 0; a < nf; ++a) {
           const int i = free_idx[a];
           if (std::abs(eig.eigenvectors()(a, k)) > 0.1 || norm(a) == 0) {
-            if (!flag[i]) {
+            if (!flag[i] && !unexcited[i]) {  // an unexcited term keeps its own note
               flag[i] = true;
               result.note[i] = "in the null space of the tests (rank-deficient covariance)";
             }
@@ -513,7 +605,7 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
       }
     }
     for (int i = 0; i < kP; ++i) {
-      if (held[i] || flag[i]) continue;
+      if (held[i] || flag[i] || unexcited[i]) continue;
       const double rel = result.std_error[i] / std::abs(theta[i]);
       if (!(rel <= options.max_relative_std_error)) {
         flag[i] = true;
@@ -526,7 +618,7 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     for (int i = 0; i < kP; ++i) any_flag = any_flag || flag[i];
     if (!any_flag || !options.fix_unidentifiable) {
       for (int i = 0; i < kP; ++i) {
-        if (flag[i]) result.status[i] = CoefficientStatus::kNotIdentifiable;
+        if (flag[i] || unexcited[i]) result.status[i] = CoefficientStatus::kNotIdentifiable;
       }
       break;
     }

@@ -12,14 +12,31 @@
 // residuals are whitened and ceres::Covariance gives the parameter covariance
 // directly.
 //
-// Identifiability: a coefficient is flagged when it lies in the numerical
-// null space of the (column-normalized) Jacobian, or when its standard
-// error exceeds max_relative_std_error x |value|. Pairs of free coefficients
+// Identifiability: a coefficient is flagged when the test matrix does not
+// excite its term (joint excitation below min_joint_excitation, see below),
+// when it lies in the numerical null space of the (column-normalized)
+// Jacobian, or when its standard error exceeds max_relative_std_error x
+// |value|. Pairs of free coefficients
 // with |correlation| > correlation_limit get a warning. With
 // fix_unidentifiable, flagged coefficients are held at their prior mean (or
 // 0 without a prior: the term is dropped) and the fit is repeated, so the
 // output never carries confident nonsense. The default limit 0.25 asks each
 // kept coefficient to lie at least 4 standard errors from zero.
+//
+// Joint excitation of a hull polynomial term v'^a r'^b (a, b from its name,
+// e.g. Y_vrr: a = 1, b = 2; prime velocities v' = v / U, r' = r Lpp / U,
+// U = |(u, v)|) is max over the analysed samples of |v'^a r'^b| divided by
+// max|v'|^a max|r'|^b over the campaign. Terms of one variable have 1 by
+// construction; a cross term reaches about 0.1 or more only when some run
+// moves in v and r together (yaw with drift, circular motion with drift).
+// Without such runs the cross terms still have a tiny column: pure yaw with
+// the path tangent on the centreline has v' = -psi^3 / 3 + ..., about 1e-4,
+// so v' r'^2 stays near 1e-4 of its scale. With exact model data that column
+// gives a large standard error, but with CFD or tank data (small,
+// non-Gaussian model error, whitened to a tiny noise level) the fit uses it
+// to absorb the model error and returns huge coefficients (Y_vrr of order
+// -5000) with small standard errors. So such a term is flagged before the
+// fit, whatever the standard error says, unless it has a prior.
 //
 // Bounds (default: added masses >= 0, which the simulator requires) are
 // enforced by Ceres; a coefficient that ends on its bound is held there and
@@ -68,6 +85,9 @@ struct JointFitOptions {
       {"m_y_prime", {0.0, std::numeric_limits<double>::infinity()}},
       {"J_z_prime", {0.0, std::numeric_limits<double>::infinity()}}};
   double max_relative_std_error = 0.25;
+  // Smallest joint excitation (see above) of a polynomial term for the test
+  // matrix to count as exciting it.
+  double min_joint_excitation = 0.01;
   double correlation_limit = 0.95;
   // Reciprocal condition (eigenvalue ratio of the normalized normal matrix)
   // below which a direction counts as unidentifiable.
@@ -128,6 +148,13 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
 
 // Index of a coefficient name in HullCoefficients::kNames, or -1.
 int CoefficientIndex(std::string_view name);
+
+// Joint excitation (see above) of every coefficient's term over the analysed
+// samples of the campaign: 1 for terms of one variable that the campaign
+// moves, 0 when a factor is never excited, NaN for terms without v', r'
+// factors (R0_prime, added masses).
+std::array<double, kCoefficientCount> JointExcitation(const CaptiveCampaign& campaign,
+                                                      std::string_view source);
 
 // Modelled nondimensional hydrodynamic forces of a run at every sample (for
 // plots and residual checks), with the given coefficients.

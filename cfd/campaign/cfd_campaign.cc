@@ -88,7 +88,10 @@ std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip
     o.yaw_amplitude = m.psi_a;
     o.period = ident::IsHarmonic(m.kind) ? m.Period() : 0.0;
     o.yaw_rate = m.r_prime * m.U / ship.Lpp;
-    o.ramp_time = m.t_ramp;
+    // Harmonic runs ramp the motion up over motion_ramp_periods periods; the
+    // captive schema's t_ramp (what the analysis discards) stays
+    // ramp_periods periods. Both laws agree for t >= t_ramp.
+    o.ramp_time = ident::IsHarmonic(m.kind) ? f.cfd.motion_ramp_periods * m.Period() : m.t_ramp;
     o.centre = Vector3(f.cfd.centre[0], f.cfd.centre[1], f.cfd.centre[2]);
     if (ident::IsHarmonic(m.kind)) {
       job.dt = o.period / f.cfd.steps_per_period;
@@ -521,10 +524,20 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
 
   // Every run is done: the campaign file in the captive schema.
   ident::CaptiveCampaign campaign;
+  bool free_surface = false;
+  if (case_root.Has("boundary")) {
+    const data::ConfigNode boundary = case_root["boundary"];
+    for (const std::string& patch : boundary.Keys()) {
+      const data::ConfigNode b = boundary[patch];
+      if (b.Has("p") && b["p"].Has("type") &&
+          b["p"].Get<std::string>("type") == "linearizedFreeSurface")
+        free_surface = true;
+    }
+  }
   campaign.description = fmt::format(
-      "CFD captive campaign '{}' of {}: case {}, double body (no free surface), hull loads on the "
-      "moving mesh",
-      f.name, ship.name, f.cfd.case_file.filename().string());
+      "CFD captive campaign '{}' of {}: case {}, {}, hull loads on the moving mesh", f.name,
+      ship.name, f.cfd.case_file.filename().string(),
+      free_surface ? "linearized free surface" : "double body (no free surface)");
   campaign.ship = ship;
   std::vector<std::vector<CaptiveSample>> all;
   for (const Job& j : jobs) {

@@ -104,7 +104,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadCampaign{"campaign: {name: a, ship: s.yaml}\ntests: {pure_yaw_r_prime: [-0.3]}\n",
                     "key 'tests.pure_yaw_r_prime[0]' = '-0.3': expected a positive amplitude"},
         BadCampaign{"campaign: {ship: s.yaml}\ntests: {pure_yaw_r_prime: [0.3]}\n",
-                    "missing required key 'campaign.name'"}));
+                    "missing required key 'campaign.name'"},
+        BadCampaign{"campaign: {name: a, ship: s.yaml, solver: cfd}\ncfd: {case: c.yaml, motion_ramp_periods: 3}\n"
+                    "tests: {pure_yaw_r_prime: [0.3]}\nsampling: {periods: 2, ramp_periods: 2}\n",
+                    "key 'cfd.motion_ramp_periods' = '3': expected a number of periods from 0 to "
+                    "sampling.ramp_periods = 2"}));
 
 }  // namespace
 }  // namespace kelvin::ident

@@ -189,6 +189,49 @@ TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
   EXPECT_EQ(r.StringAttribute("/", "solver"), "cfd");
 }
 
+// cfd.motion_ramp_periods: the motion ramps up over fewer periods than the
+// analysis discards (the Wigley campaigns ramp over one period and discard
+// two, so that the start-up disturbance leaves the grid at full motion). The
+// captive schema keeps t_ramp = ramp_periods periods, and from one motion
+// ramp period on the pose is the textbook law at full amplitude.
+TEST(CfdCampaign, MotionRampsOverFewerPeriodsThanTheAnalysisDiscards) {
+  ScopedTempDir tmp;
+  std::string text = ReadText(WriteCampaign(tmp / "c"));
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace("  static_drift_deg: [0, 5, -5]\n", "");
+  replace("  pure_yaw_r_prime: [0.15]\n", "");
+  replace("steps_per_period: 40", "steps_per_period: 40\n  motion_ramp_periods: 1");
+  replace("sampling: {periods: 2, ramp_periods: 1}", "sampling: {periods: 1, ramp_periods: 2}");
+  std::ofstream(tmp / "c/campaign.yaml") << text;
+  const ident::CampaignFile f = ident::LoadCampaignFile(tmp / "c/campaign.yaml");
+  EXPECT_EQ(f.cfd.motion_ramp_periods, 1);
+  const CampaignRunSummary s = RunCfdCampaign(f, Quiet());
+  ASSERT_TRUE(s.complete);
+  const ident::CaptiveCampaign c = ident::ReadCampaignH5(s.output);
+  ASSERT_EQ(c.runs.size(), 1u);
+  const ident::MotionParameters& m = c.runs[0].motion;
+  EXPECT_EQ(m.kind, ident::MotionKind::kPureSway);
+  EXPECT_NEAR(m.t_ramp, 2 * m.Period(), 1e-12);
+  EXPECT_EQ(c.runs[0].time.size(), 3u * 40u);
+  const data::H5Reader r(tmp / "c/runs" / c.runs[0].name / "result.h5");
+  const std::vector<double> t = r.Read("captive/time").values, y0 = r.Read("captive/y0").values;
+  int full = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double law = -m.y_a * std::sin(m.omega * t[i]);
+    if (t[i] >= m.Period() - 1e-9) {
+      EXPECT_NEAR(y0[i], law, 1e-12 * m.y_a) << "t = " << t[i];
+      ++full;
+    } else if (t[i] < 0.9 * m.Period() && std::abs(law) > 0.1 * m.y_a) {
+      EXPECT_LT(std::abs(y0[i]), std::abs(law)) << "t = " << t[i] << ": still ramping";
+    }
+  }
+  EXPECT_EQ(full, 2 * 40 + 1);
+}
+
 TEST(CfdCampaign, ARunInAnotherProcessIsNotComputedTwice) {
   ScopedTempDir tmp;
   const ident::CampaignFile f = ident::LoadCampaignFile(WriteCampaign(tmp / "c"));

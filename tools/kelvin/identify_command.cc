@@ -30,6 +30,7 @@ struct IdentifyArgs {
   double loss_scale = 3.0;
   double min_noise = 0.01;
   double max_relative_std_error = 0.25;
+  double min_joint_excitation = 0.01;
   std::vector<std::string> priors;
   std::vector<std::string> fixed;
   std::vector<std::string> bounds;
@@ -73,6 +74,7 @@ void RunIdentify(const IdentifyArgs& a) {
   options.loss_scale = a.loss_scale;
   options.min_noise_fraction = a.min_noise;
   options.max_relative_std_error = a.max_relative_std_error;
+  options.min_joint_excitation = a.min_joint_excitation;
   options.fix_unidentifiable = !a.keep_unidentifiable;
   for (const std::string& p : a.priors) {
     const auto [name, rest] =
@@ -179,6 +181,10 @@ Command AddIdentifyCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--max-rel-std-error", args->max_relative_std_error,
                   "Flag a coefficient whose standard error exceeds this fraction of its value")
+      ->capture_default_str();
+  cmd->add_option("--min-joint-excitation", args->min_joint_excitation,
+                  "Flag a cross term (e.g. Y_vrr) whose regressor reaches less than this fraction "
+                  "of max|v'|^a max|r'|^b (0: off)")
       ->capture_default_str();
   cmd->add_option("--prior", args->priors, "Gaussian prior NAME=MEAN:SIGMA (repeatable)");
   cmd->add_option("--fix", args->fixed, "Hold a coefficient NAME=VALUE (repeatable)");

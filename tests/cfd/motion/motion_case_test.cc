@@ -161,8 +161,8 @@ namespace kelvin::cfd {
 namespace {
 
 // The case files of the repository's CFD campaigns with SST and the free
-// surface (the Wigley campaign and the KCS campaign, whose hull the user
-// supplies) load on a hull grid with the patches they name, take the
+// surface (the Wigley campaign, the quickstart's coarse Wigley campaign and
+// the KCS campaign, whose hull the user supplies) load on a hull grid with the patches they name, take the
 // campaign's motion, and step: the free surface moves with the motion's
 // point velocity, so on the first step of a pure sway from rest the
 // solution stays finite and the free surface has a condition to apply.
@@ -171,7 +171,7 @@ TEST(MotionCase, CampaignCaseFilesLoadAndStepOnAHullGrid) {
   const std::filesystem::path data = kelvin::testing::SourceDir() / "data/cases/captive_cfd";
   const MeshCase mesh_case = LoadMeshCase(data / "wigley_lfs_mesh.yaml");
   RunMeshCase(mesh_case, 1, dir / "grid");
-  for (const char* name : {"wigley_lfs_case.yaml", "kcs_case.yaml"}) {
+  for (const char* name : {"wigley_lfs_case.yaml", "wigley_quick_case.yaml", "kcs_case.yaml"}) {
     CaseOverrides o;
     o.poly_mesh = dir / "grid/constant/polyMesh";
     MotionOptions m;
