@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <complex>
 #include <memory>
 #include <vector>
@@ -51,6 +52,24 @@ inline std::unique_ptr<PimpleSolver> MakeWaterBox(const Mesh& mesh, LinearizedFr
   pimple.pressure_solver.relative_tolerance = tolerance;
   pimple.pressure_final_relative_tolerance = tolerance;
   return std::make_unique<PimpleSolver>(mesh, physics, schemes, pimple, std::move(U), std::move(p));
+}
+
+// A 2 cm Gaussian hump off the centre of the 1 m x 0.6 m water box: it
+// sloshes in x and y and has a non-zero mean level.
+inline std::vector<double> OffCentreHump(const PatchSurface& surface) {
+  std::vector<double> eta(surface.size());
+  for (int i = 0; i < surface.size(); ++i) {
+    const Vector3& x = surface.centres()[i];
+    eta[i] = 0.02 * std::exp(-(std::pow(x.x() - 0.3, 2) + std::pow(x.y() - 0.2, 2)) / 0.02);
+  }
+  return eta;
+}
+
+// Net volume flux out through a patch (m^3/s).
+inline double PatchFlux(const PimpleSolver& solver, const Patch& patch) {
+  double sum = 0.0;
+  for (int f = patch.start; f < patch.start + patch.size; ++f) sum += solver.flux()[f];
+  return sum;
 }
 
 // Least-squares fit of x_{n+1} = c1 x_n + c2 x_{n-1} over samples [first,

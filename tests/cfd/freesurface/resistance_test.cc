@@ -185,6 +185,29 @@ resistance:
   steady: {tolerance: 1.0e-3, min_windows: 1, ramp_steps: 4}
 )";
 
+// What a converged run of a variant of kCase reports.
+struct BlockRun {
+  double r_t = 0.0;           // N
+  double max_courant = 0.0;
+  double release_time = 0.0;  // s (NaN: no rigid lid)
+  double flow_through = 0.0;  // s
+};
+
+// Runs the case text in a scratch directory and expects it to complete and
+// stop on the steady criterion.
+BlockRun RunBlockCase(const std::string& text) {
+  kelvin::testing::ScopedTempDir tmp;
+  RunOptions ro;
+  ro.progress = false;
+  const RunSummary r = RunCase(testing::WriteCase(tmp.path(), text), ro);
+  EXPECT_EQ(r.status, RunSummary::Status::kCompleted) << r.message;
+  const data::H5Reader h(r.output_directory / "resistance.h5");
+  EXPECT_EQ(h.Read("converged").at(0), 1.0) << r.message;
+  const data::Series co = data::H5Reader(r.output_directory / "history.h5").Read("courant");
+  return {h.Read("R_T").at(0), *std::max_element(co.values.begin(), co.values.end()), h.Read("release_time").at(0),
+          h.Read("flow_through").at(0)};
+}
+
 TEST(ResistanceCase, WritesCoefficientsConsistentWithItsForcesAndStops) {
   kelvin::testing::ScopedTempDir tmp;
   const auto file = testing::WriteCase(tmp.path(), kCase);
@@ -222,20 +245,13 @@ TEST(ResistanceCase, WritesCoefficientsConsistentWithItsForcesAndStops) {
 // 0.5% of the resistance at Courant 8 (measured: 0.36%).
 TEST(ResistanceCase, ConvergesAtCourant100ToTheCourant8Resistance) {
   auto run = [](double dt, double* courant) {
-    kelvin::testing::ScopedTempDir tmp;
     std::string text = kCase;
     const std::string from = "time: {dt: 0.5, end: 60}";
     text.replace(text.find(from), from.size(), "time: {dt: " + std::to_string(dt) + ", end: " +
                                                     std::to_string(150 * dt) + "}");
-    RunOptions ro;
-    ro.progress = false;
-    const RunSummary r = RunCase(testing::WriteCase(tmp.path(), text), ro);
-    EXPECT_EQ(r.status, RunSummary::Status::kCompleted) << r.message;
-    const data::H5Reader h(r.output_directory / "resistance.h5");
-    EXPECT_EQ(h.Read("converged").at(0), 1.0) << r.message;
-    const data::Series co = data::H5Reader(r.output_directory / "history.h5").Read("courant");
-    *courant = *std::max_element(co.values.begin(), co.values.end());
-    return h.Read("R_T").at(0);
+    const BlockRun r = RunBlockCase(text);
+    *courant = r.max_courant;
+    return r.r_t;
   };
   double co_small = 0.0, co_big = 0.0;
   const double rt_small = run(2.5, &co_small);
@@ -264,23 +280,11 @@ TEST(ResistanceCase, BadKeysNameTheKey) {
 // until the lid is released after the given windows; then the run converges
 // as without it, to the same resistance (the lid only changes the start).
 TEST(ResistanceCase, RigidLidStartReleasesAndConvergesToTheSameResistance) {
-  auto run = [](bool lid, double* release, double* flow_through) {
-    kelvin::testing::ScopedTempDir tmp;
-    std::string text = kCase;
-    if (lid) text.replace(text.find("ramp_steps: 4}"), 14, "ramp_steps: 4, rigid_lid_windows: 1}");
-    RunOptions ro;
-    ro.progress = false;
-    const RunSummary r = RunCase(testing::WriteCase(tmp.path(), text), ro);
-    EXPECT_EQ(r.status, RunSummary::Status::kCompleted) << r.message;
-    const data::H5Reader h(r.output_directory / "resistance.h5");
-    EXPECT_EQ(h.Read("converged").at(0), 1.0) << r.message;
-    *release = h.Read("release_time").at(0);
-    *flow_through = h.Read("flow_through").at(0);
-    return h.Read("R_T").at(0);
-  };
-  double release_free = 0, release_lid = 0, flow_through = 0;
-  const double free = run(false, &release_free, &flow_through);
-  const double held = run(true, &release_lid, &flow_through);
+  std::string with_lid = kCase;
+  with_lid.replace(with_lid.find("ramp_steps: 4}"), 14, "ramp_steps: 4, rigid_lid_windows: 1}");
+  const BlockRun a = RunBlockCase(kCase), b = RunBlockCase(with_lid);
+  const double free = a.r_t, held = b.r_t, release_free = a.release_time, release_lid = b.release_time;
+  const double flow_through = b.flow_through;
   std::printf("R_T %.6f N free from the start, %.6f N after the rigid lid (released at t = %.2f s): %+.4f%%\n", free,
               held, release_lid, 100 * (held - free) / free);
   EXPECT_TRUE(std::isnan(release_free));
