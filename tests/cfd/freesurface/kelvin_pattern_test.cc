@@ -12,12 +12,15 @@
 // march at Courant 100 (see linearized_free_surface.h on large Courant
 // numbers).
 //
-// Checks:
+// Checks, against 2 pi U^2 / g and against the exact linear solution for the
+// same patch and depth (PressurePatchWaves) sampled at the same faces:
 // - transverse wavelength along the track behind the patch (zero crossings
 //   between 0.75 and 2.75 lambda) within 3% of 2 pi U^2 / g;
-// - the pattern stays inside the Kelvin wedge: beyond one wavelength from the
-//   patch and outside the beaches, |eta| at angles above 19.47 + 8 degrees
-//   from the track is small against |eta| inside the wedge;
+// - the Kelvin wedge: the angular distribution of the wave energy between
+//   1.5 and 2.75 wavelengths from the patch matches the exact solution's,
+//   which at this distance still spreads a few degrees beyond 19.47 deg (the
+//   Airy tail of the cusp caustic) and narrows with distance toward it;
+// - wave amplitude behind the patch against the exact peak;
 // - no waves upstream: ahead of the patch eta decays without a zero crossing
 //   and stays small.
 #include <gtest/gtest.h>
@@ -28,6 +31,7 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "cfd/verification/pressure_patch_waves.h"
 #include "tests/cfd/freesurface/free_surface_test_support.h"
 
 namespace kelvin::cfd {
@@ -37,18 +41,23 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kG = 9.81;
 constexpr double kLambda = 1.0;  // transverse wavelength 2 pi U^2 / g, m
 
-struct KelvinResult {
+// What the checks measure on one steady pattern, the computed one or the
+// exact linear solution sampled at the same face centres.
+struct PatternMeasures {
   double wavelength = 0.0;  // m, from the centreline crossings
   int crossings = 0;
-  double angle95[2] = {0,
-                       0};  // deg, angle holding 95% of eta^2 dA for r in [1.5 | 2.0, 2.75] lambda
+  double angle95[2] = {0, 0};  // deg, angle holding 95% of eta^2 dA for r in [1.5 | 2.0, 2.75] lambda
   double beyond_wedge = 0.0;     // fraction of eta^2 dA (r in [1.5, 2.75] lambda) beyond 19.47 deg
   double beyond_wedge_10 = 0.0;  // ... beyond 29.47 deg
-  double peak = 0.0;             // m, max |eta| behind the patch
+  double peak = 0.0;             // m, max |eta| behind the patch (x > lambda / 2)
   double max_upstream = 0.0;     // m, max |eta| on the centreline for x < -3 r
-  bool upstream_monotone =
-      true;             // centreline for x < -2 r: one sign, |eta| growing toward the patch
-  double change = 0.0;  // max |eta change| over the last step / max |eta|
+  bool upstream_monotone = true;  // centreline for x < -2 r: one sign, |eta| growing toward the patch
+};
+
+struct KelvinResult {
+  PatternMeasures computed;
+  PatternMeasures exact;  // PressurePatchWaves at the face centres
+  double change = 0.0;    // max |eta change| over the last step / max |eta|
   int steps = 0;
 };
 
@@ -61,6 +70,74 @@ struct KelvinRun {
   bool relax = false;  // U 0.7, p 0.3 in the non-final outer correctors
   double kinematic_courant = 0.0;
 };
+
+// Measures of the pattern `eta` on the faces of `fs` (spacing dx, inlet at
+// x_inlet): centreline wavelength, peak, upstream decay and the angular
+// distribution of wave energy.
+PatternMeasures Measure(const LinearizedFreeSurface& fs, const std::vector<double>& eta, double dx,
+                        double x_inlet) {
+  constexpr double kRadius = 0.25 * kLambda;  // the patch
+  PatternMeasures m;
+  // Centreline: the first row of faces (y = dx / 2).
+  const auto& x = fs.surface().centres();
+  std::vector<std::pair<double, double>> line;
+  for (int i = 0; i < fs.surface().size(); ++i) {
+    if (x[i].y() < dx) line.emplace_back(x[i].x(), eta[i]);
+  }
+  std::sort(line.begin(), line.end());
+  std::vector<double> crossings;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const auto [x0, e0] = line[i];
+    const auto [x1, e1] = line[i + 1];
+    if (x0 >= 0.75 * kLambda && x1 <= 2.75 * kLambda && e0 * e1 < 0.0) {
+      crossings.push_back(x0 + (x1 - x0) * e0 / (e0 - e1));
+    }
+  }
+  m.crossings = static_cast<int>(crossings.size());
+  if (crossings.size() >= 2) {
+    m.wavelength =
+        2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  }
+  for (int i = 0; i < fs.surface().size(); ++i) {
+    if (x[i].x() > 0.5 * kLambda) m.peak = std::max(m.peak, std::abs(eta[i]));
+  }
+  // Upstream: the faces between the second face from the inlet and x = -2 r,
+  // in the direction of the patch.
+  double last = 0.0;
+  for (const auto& [xc, e] : line) {
+    if (xc < x_inlet + 1.5 * dx || xc > -2.0 * kRadius) continue;
+    if (xc < -3.0 * kRadius) m.max_upstream = std::max(m.max_upstream, std::abs(e));
+    if (last != 0.0 && (e * last <= 0.0 || std::abs(e) < std::abs(last))) m.upstream_monotone = false;
+    last = e;
+  }
+  // Kelvin wedge, by the distribution of wave energy (eta^2 dA) over the
+  // angle from the track in the annulus 1.5 to 2.75 wavelengths from the
+  // patch, before the beaches. In the far field every steady wave lies within
+  // 19.47 deg; this close to the patch the caustic on the cusp line is an Airy
+  // function whose tail still reaches a few degrees beyond the line, and
+  // narrows with distance: the exact solution has the same spread.
+  for (int band = 0; band < 2; ++band) {
+    const double r0 = band == 0 ? 1.5 * kLambda : 2.0 * kLambda;
+    std::vector<std::pair<double, double>> energy;  // (angle deg, eta^2 dA)
+    double total = 0.0;
+    for (int i = 0; i < fs.surface().size(); ++i) {
+      const double r = x[i].head<2>().norm();
+      if (r < r0 || r > 2.75 * kLambda || fs.damping()[i] > 0.0) continue;
+      energy.emplace_back(std::atan2(x[i].y(), x[i].x()) * 180.0 / kPi,
+                          eta[i] * eta[i] * fs.surface().areas()[i]);
+      total += energy.back().second;
+    }
+    std::sort(energy.begin(), energy.end());
+    double sum = 0.0;
+    for (const auto& [angle, e] : energy) {
+      sum += e;
+      if (sum < 0.95 * total) m.angle95[band] = angle;
+      if (band == 0 && angle > 19.47) m.beyond_wedge += e / total;
+      if (band == 0 && angle > 29.47) m.beyond_wedge_10 += e / total;
+    }
+  }
+  return m;
+}
 
 KelvinResult RunKelvin(const KelvinRun& run) {
   const int cells_per_lambda = run.cells_per_lambda;
@@ -149,100 +226,76 @@ KelvinResult RunKelvin(const KelvinRun& run) {
     }
   }
 
-  // Centreline: the first row of faces (y = dy / 2).
-  const auto x = fs->surface().centres();
-  const std::vector<double>& eta = fs->eta();
-  const double dy = mo.max.y() / mo.cells[1];
-  std::vector<std::pair<double, double>> line;
-  for (int i = 0; i < fs->surface().size(); ++i) {
-    if (x[i].y() < dy) line.emplace_back(x[i].x(), eta[i]);
-  }
-  std::sort(line.begin(), line.end());
-  std::vector<double> crossings;
-  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-    const auto [x0, e0] = line[i];
-    const auto [x1, e1] = line[i + 1];
-    if (x0 >= 0.75 * kLambda && x1 <= 2.75 * kLambda && e0 * e1 < 0.0) {
-      crossings.push_back(x0 + (x1 - x0) * e0 / (e0 - e1));
-    }
-  }
-  res.crossings = static_cast<int>(crossings.size());
-  if (crossings.size() >= 2) {
-    res.wavelength =
-        2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-  }
-  for (int i = 0; i < fs->surface().size(); ++i) {
-    if (x[i].x() > 0.5 * kLambda) res.peak = std::max(res.peak, std::abs(eta[i]));
-  }
-  // Upstream: the faces between the second face from the inlet and x = -2 r,
-  // in the direction of the patch.
-  double last = 0.0;
-  for (const auto& [xc, e] : line) {
-    if (xc < mo.min.x() + 1.5 * dx || xc > -2.0 * r_patch) continue;
-    if (xc < -3.0 * r_patch) res.max_upstream = std::max(res.max_upstream, std::abs(e));
-    if (last != 0.0 && (e * last <= 0.0 || std::abs(e) < std::abs(last)))
-      res.upstream_monotone = false;
-    last = e;
-  }
-  // Kelvin wedge, by the distribution of wave energy (eta^2 dA) over the
-  // angle from the track in the annulus 1.5 to 2.75 wavelengths from the
-  // patch, before the beaches. In the far field every steady wave lies within
-  // 19.47 deg; this close to the patch the caustic on the cusp line is an Airy
-  // function whose tail still reaches a few degrees beyond the line, and
-  // narrows with distance.
-  for (int band = 0; band < 2; ++band) {
-    const double r0 = band == 0 ? 1.5 * kLambda : 2.0 * kLambda;
-    std::vector<std::pair<double, double>> energy;  // (angle deg, eta^2 dA)
-    double total = 0.0;
-    for (int i = 0; i < fs->surface().size(); ++i) {
-      const double r = x[i].head<2>().norm();
-      if (r < r0 || r > 2.75 * kLambda || fs->damping()[i] > 0.0) continue;
-      energy.emplace_back(std::atan2(x[i].y(), x[i].x()) * 180.0 / kPi,
-                          eta[i] * eta[i] * fs->surface().areas()[i]);
-      total += energy.back().second;
-    }
-    std::sort(energy.begin(), energy.end());
-    double sum = 0.0;
-    for (const auto& [angle, e] : energy) {
-      sum += e;
-      if (sum < 0.95 * total) res.angle95[band] = angle;
-      if (band == 0 && angle > 19.47) res.beyond_wedge += e / total;
-      if (band == 0 && angle > 29.47) res.beyond_wedge_10 += e / total;
-    }
-  }
+  const auto& x = fs->surface().centres();
+  res.computed = Measure(*fs, fs->eta(), dx, mo.min.x());
+
+  // The exact linear solution on the same face centres: the periodic FFT
+  // grid has the face spacing and its node (0, 0) on the first face centre.
+  PressurePatchWaveOptions exact;
+  exact.g = kG;
+  exact.speed = U;
+  exact.depth = -mo.min.z();
+  exact.radius = r_patch;
+  exact.head = p0 / kG;
+  exact.spacing = dx;
+  exact.origin_x = mo.min.x() + 0.5 * dx;
+  exact.origin_y = mo.min.y() + 0.5 * dx;
+  const PressurePatchWaves waves(exact);
+  std::vector<double> eta_exact(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) eta_exact[i] = waves.Elevation(x[i].x(), x[i].y());
+  res.exact = Measure(*fs, eta_exact, dx, mo.min.x());
+
   if (std::getenv("KELVIN_VERBOSE")) {
-    for (const auto& [xc, e] : line) std::printf("centreline x %.4f eta %.5e\n", xc, e);
     for (int i = 0; i < fs->surface().size(); ++i) {
-      std::printf("surface %.5f %.5f %.6e\n", x[i].x(), x[i].y(), eta[i]);
+      std::printf("surface %.5f %.5f %.6e %.6e\n", x[i].x(), x[i].y(), fs->eta()[i], eta_exact[i]);
     }
   }
   return res;
 }
 
-void CheckPattern(const KelvinResult& r, const char* label) {
-  const double error = r.wavelength / kLambda - 1.0;
+void Print(const PatternMeasures& m, const char* what) {
   std::printf(
-      "%s after %d steps (last relative change %.1e): transverse wavelength %.4f m from %d "
-      "crossings "
-      "(error %+.2f%% against 2 pi U^2/g); wave energy within %.1f deg (r 1.5-2.75 lambda) and "
-      "%.1f deg "
-      "(r 2-2.75 lambda), %.1f%% beyond 19.47 deg, %.2f%% beyond 29.47 deg; upstream: max |eta| "
-      "%.3f of "
-      "the peak, %s\n",
-      label, r.steps, r.change, r.wavelength, r.crossings, 100.0 * error, r.angle95[0],
-      r.angle95[1], 100.0 * r.beyond_wedge, 100.0 * r.beyond_wedge_10, r.max_upstream / r.peak,
-      r.upstream_monotone ? "monotone, one sign (no waves)" : "oscillating");
+      "  %s: transverse wavelength %.4f m from %d crossings (%+.2f%% against 2 pi U^2/g); peak %.3e m; "
+      "95%% of the wave energy within %.1f deg (r 1.5-2.75 lambda) and %.1f deg (r 2-2.75 lambda); "
+      "%.1f%% beyond 19.47 deg, %.2f%% beyond 29.47 deg; upstream max |eta| %.3f of the peak, %s\n",
+      what, m.wavelength, m.crossings, 100.0 * (m.wavelength / kLambda - 1.0), m.peak, m.angle95[0],
+      m.angle95[1], 100.0 * m.beyond_wedge, 100.0 * m.beyond_wedge_10, m.max_upstream / m.peak,
+      m.upstream_monotone ? "monotone, one sign (no waves)" : "oscillating");
+}
+
+void CheckPattern(const KelvinResult& r, const char* label) {
+  const PatternMeasures& c = r.computed;
+  const PatternMeasures& e = r.exact;
+  std::printf("%s after %d steps (last relative change %.1e):\n", label, r.steps, r.change);
+  Print(c, "kelvin");
+  Print(e, "exact linear solution");
   EXPECT_LT(r.change, 3e-4);
-  EXPECT_GE(r.crossings, 4);
-  EXPECT_LT(std::abs(error), 0.03);
-  // The Airy tail of the caustic: a few degrees beyond the Kelvin line,
-  // narrowing with distance, and nearly nothing 10 degrees beyond it.
-  EXPECT_LT(r.angle95[0], 19.47 + 7.0);
-  EXPECT_LT(r.angle95[1], r.angle95[0]);
-  EXPECT_LT(r.beyond_wedge, 0.2);
-  EXPECT_LT(r.beyond_wedge_10, 0.02);
-  EXPECT_TRUE(r.upstream_monotone);
-  EXPECT_LT(r.max_upstream, 0.05 * r.peak);
+  EXPECT_GE(c.crossings, 4);
+  EXPECT_LT(std::abs(c.wavelength / kLambda - 1.0), 0.03);
+  // The wedge. The exact solution itself is not confined to 19.47 deg this
+  // close to the patch (the Airy tail of the caustic; 18.7% of the energy
+  // between 1.5 and 2.75 wavelengths), so the computed pattern is held to
+  // the exact one: the energy's angular spread within 1.5 deg, the energy
+  // beyond the Kelvin line within 4 points, and nearly nothing 10 deg beyond
+  // it. The tolerances cover the phase error of a 16-faces-per-wavelength
+  // grid (the wavelength itself is 2% long) at the short divergent waves
+  // that carry the energy near the cusp line (2/3 of the transverse length).
+  // In both, the spread narrows with distance toward the 19.47 deg limit.
+  EXPECT_NEAR(c.angle95[0], e.angle95[0], 1.5);
+  EXPECT_NEAR(c.angle95[1], e.angle95[1], 1.5);
+  EXPECT_LT(c.angle95[1], c.angle95[0]);
+  EXPECT_LT(e.angle95[1], e.angle95[0]);
+  EXPECT_NEAR(c.beyond_wedge, e.beyond_wedge, 0.04);
+  EXPECT_LT(c.beyond_wedge_10, 0.02);
+  EXPECT_LT(e.beyond_wedge_10, 0.02);
+  // Amplitude: the wave crests behind the patch lose 13% (16 faces per
+  // wavelength) and 7% (24) of the exact peak to the damping of the upwinded
+  // kinematic condition; the loss shrinks with the grid.
+  EXPECT_NEAR(c.peak / e.peak, 1.0, 0.15);
+  // No waves upstream, as in the exact solution.
+  EXPECT_TRUE(e.upstream_monotone);
+  EXPECT_TRUE(c.upstream_monotone);
+  EXPECT_LT(c.max_upstream, 0.05 * c.peak);
 }
 
 // 16 faces per wavelength, Courant number 5 along the stream: about 100
@@ -280,10 +333,11 @@ TEST(KelvinPattern, CourantOneHundredReachesTheSameSteadyPattern) {
   CheckPattern(r, "Kelvin pattern at Courant 100");
   std::printf(
       "Courant 100 against 5: wavelength %.5f against %.5f m (%+.3f%%), peak %.5e against %.5e m\n",
-      r.wavelength, reference.wavelength, 100.0 * (r.wavelength / reference.wavelength - 1.0),
-      r.peak, reference.peak);
-  EXPECT_NEAR(r.wavelength / reference.wavelength, 1.0, 0.002);
-  EXPECT_NEAR(r.peak / reference.peak, 1.0, 0.01);
+      r.computed.wavelength, reference.computed.wavelength,
+      100.0 * (r.computed.wavelength / reference.computed.wavelength - 1.0), r.computed.peak,
+      reference.computed.peak);
+  EXPECT_NEAR(r.computed.wavelength / reference.computed.wavelength, 1.0, 0.002);
+  EXPECT_NEAR(r.computed.peak / reference.computed.peak, 1.0, 0.01);
 }
 
 }  // namespace
