@@ -201,20 +201,28 @@ void ResistanceMonitor::StartPhase(double time) {
   convergence_.emplace(convergence_->window(), options_.tolerance, options_.window_steps);
 }
 
-void ResistanceMonitor::Start(PimpleSolver& solver, bool restarted) {
+void ResistanceMonitor::Start(PimpleSolver& solver, bool restarted, const std::map<std::string, double>& checkpoint) {
   StartPhase(solver.time());
   started_ = true;
+  if (restarted) {
+    if (const auto it = checkpoint.find("resistance_release_time"); it != checkpoint.end()) release_time_ = it->second;
+  }
   if (free_surface_ >= 0 && options_.rigid_lid_windows > 0.0) {
-    auto* fs = dynamic_cast<LinearizedFreeSurface*>(&solver.p().bc(free_surface_));
-    if (!restarted) fs->SetRigidLid(true);
-    if (fs->rigid_lid()) {
-      lid_ = fs;
+    auto& fs = dynamic_cast<LinearizedFreeSurface&>(solver.p().bc(free_surface_));
+    if (!restarted) fs.SetRigidLid(true);
+    if (fs.rigid_lid()) {
+      lid_ = &fs;
       rigid_until_ = solver.time() + options_.rigid_lid_windows * convergence_->window();
     }
   }
   if (restarted || !options_.initial_velocity) return;
   VectorField& U = solver.U();
   for (int i = 0; i < solver.mesh().n_cells(); ++i) U[i] = options_.inflow;
+}
+
+std::map<std::string, double> ResistanceMonitor::CheckpointScalars() const {
+  if (std::isnan(release_time_)) return {};
+  return {{"resistance_release_time", release_time_}};
 }
 
 double ResistanceMonitor::TimeStep(double dt) const {

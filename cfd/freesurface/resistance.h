@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <memory>
 #include <limits>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -135,7 +136,12 @@ class ResistanceMonitor {
   ResistanceMonitor(const PimpleSolver& solver, ResistanceOptions options);
 
   // Before the time loop: the uniform initial field (unless restarted).
-  void Start(PimpleSolver& solver, bool restarted);
+  // `checkpoint`: the run scalars of the checkpoint restarted from (see
+  // CheckpointScalars()).
+  void Start(PimpleSolver& solver, bool restarted, const std::map<std::string, double>& checkpoint = {});
+  // What a checkpoint must keep for a restarted run to report as the
+  // uninterrupted one: the lid release time, once released.
+  std::map<std::string, double> CheckpointScalars() const;
   // Time step of the next step for the case's dt (the ramp).
   double TimeStep(double dt) const;
   // After each step: pressure and viscous force on the hull (N, mesh axes).

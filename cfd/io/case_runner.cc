@@ -539,13 +539,14 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   fs::create_directories(c.output_directory);
   RunSummary summary;
   summary.output_directory = c.output_directory;
-  if (!options.restart.empty()) ReadCheckpoint(options.restart, solver);
+  CheckpointScalars restored;
+  if (!options.restart.empty()) restored = ReadCheckpoint(options.restart, solver);
   // Steady resistance (the `resistance:` section): uniform start, time-step
   // ramp, convergence stop and resistance.h5 (cfd/freesurface/resistance.h).
   std::unique_ptr<ResistanceMonitor> resistance;
   if (root.Has("resistance")) {
     resistance = LoadResistance(root["resistance"], solver, root["physics"], case_file.parent_path());
-    resistance->Start(solver, !options.restart.empty());
+    resistance->Start(solver, !options.restart.empty(), restored);
   }
 
   std::vector<std::vector<double>> history;  // rows: time, Co, resU, resp, continuity, forces...
@@ -738,7 +739,8 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     if ((last && c.checkpoint_interval >= 0) ||
         (c.checkpoint_interval > 0 && solver.step() % c.checkpoint_interval == 0)) {
       summary.last_checkpoint = c.output_directory / "checkpoint.h5";
-      WriteCheckpoint(summary.last_checkpoint, solver);
+      WriteCheckpoint(summary.last_checkpoint, solver,
+                      resistance ? resistance->CheckpointScalars() : CheckpointScalars{});
       write_history();
     }
     if (const TurbulenceModel* t = solver.turbulence()) {

@@ -25,9 +25,24 @@ std::vector<Vector3> Unflatten(const data::Series& s) {
   return out;
 }
 
+constexpr const char* kScalarNameChars = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_";
+
+// The names of a comma-separated list attribute, empty entries skipped.
+std::vector<std::string> SplitNames(const std::string& names) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= names.size()) {
+    const std::size_t end = std::min(names.find(',', start), names.size());
+    if (end > start) out.push_back(names.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
-void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solver) {
+void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solver,
+                     const CheckpointScalars& scalars) {
   const PimpleSolver::State s = solver.GetState();
   data::H5Writer w(path, data::H5Writer::Mode::kCreate);
   w.SetAttribute("/", "kind", "kelvin PIMPLE checkpoint");
@@ -61,10 +76,20 @@ void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solv
     }
     w.SetAttribute("/", "turbulence_arrays", names);
   }
+  if (!scalars.empty()) {
+    std::string names;
+    for (const auto& [name, value] : scalars) {
+      KELVIN_CHECK(!name.empty() && name.find_first_not_of(kScalarNameChars) == std::string::npos,
+                   "checkpoint scalar names are identifiers");
+      names += (names.empty() ? "" : ",") + name;
+      w.SetAttribute("/", "run_" + name, value);
+    }
+    w.SetAttribute("/", "run_scalars", names);
+  }
   w.Commit();
 }
 
-void ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver) {
+CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver) {
   data::H5Reader r(path);
   const auto n_cells = static_cast<int>(r.NumberAttribute("/", "n_cells"));
   const auto n_faces = static_cast<int>(r.NumberAttribute("/", "n_faces"));
@@ -89,13 +114,8 @@ void ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver) {
     s.bc_state.push_back(r.Has(name) ? r.Read(name).values : std::vector<double>{});
   }
   if (r.HasAttribute("/", "turbulence_arrays")) {
-    const std::string names = r.StringAttribute("/", "turbulence_arrays");
-    std::size_t start = 0;
-    while (start <= names.size()) {
-      const std::size_t end = std::min(names.find(',', start), names.size());
-      const std::string name = names.substr(start, end - start);
-      if (!name.empty()) s.turbulence.emplace_back(name, r.Read("turbulence/" + name).values);
-      start = end + 1;
+    for (const std::string& name : SplitNames(r.StringAttribute("/", "turbulence_arrays"))) {
+      s.turbulence.emplace_back(name, r.Read("turbulence/" + name).values);
     }
   }
   try {
@@ -103,6 +123,13 @@ void ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver) {
   } catch (const DataFileError& e) {
     throw DataFileError(fmt::format("{}: {}", path.string(), e.what()));
   }
+  CheckpointScalars scalars;
+  if (r.HasAttribute("/", "run_scalars")) {
+    for (const std::string& name : SplitNames(r.StringAttribute("/", "run_scalars"))) {
+      scalars[name] = r.NumberAttribute("/", "run_" + name);
+    }
+  }
+  return scalars;
 }
 
 }  // namespace kelvin::cfd

@@ -4,13 +4,23 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <string>
 
 #include "cfd/solver/pimple_solver.h"
 
 namespace kelvin::cfd {
 
-void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solver);
-// Restores the state; a DataFileError if the file does not match the mesh.
-void ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver);
+// Run-level scalars kept with the solver state, by name: what a restarted
+// run needs to report as the uninterrupted one would (e.g. the pseudo-time
+// at which a resistance run released its rigid lid). Names are plain
+// identifiers ([A-Za-z0-9_]).
+using CheckpointScalars = std::map<std::string, double>;
+
+void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solver,
+                     const CheckpointScalars& scalars = {});
+// Restores the state and returns the run scalars (none in checkpoints
+// written without them); a DataFileError if the file does not match the mesh.
+CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver);
 
 }  // namespace kelvin::cfd
