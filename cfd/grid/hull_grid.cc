@@ -70,6 +70,10 @@ void HullGridOptions::Validate() const {
   RequirePositive("free_surface_spacing", free_surface_spacing);
   RequirePositive("keel_spacing", keel_spacing);
   RequirePositive("y_plus", y_plus);
+  if (!(wave_froude >= 0.0) || !std::isfinite(wave_froude)) {
+    throw ConfigError(fmt::format("hull grid option 'waves.froude' = {}: expected a finite number >= 0", wave_froude));
+  }
+  if (wave_froude > 0.0) RequirePositive("waves.cells_per_wavelength", cells_per_wave);
   if (!(reynolds >= 1e3) || !std::isfinite(reynolds)) {
     throw ConfigError(fmt::format(
         "hull grid option 'reynolds' = {}: expected a finite number >= 1000", reynolds));
@@ -88,6 +92,7 @@ HullGridOptions HullGridOptions::Coarsened(double ratio) const {
   o.cells_below_keel = scale(cells_below_keel, 1);
   o.cells_normal = scale(cells_normal, 2);
   o.y_plus = y_plus * ratio;
+  o.cells_per_wave = cells_per_wave / ratio;
   return o;
 }
 
@@ -101,14 +106,25 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
   const double xa = hull.x_aft(), xf = hull.x_fore(), L = xf - xa;
   const double W = o.half_width * L, D = o.depth * L;
   const double h_wall = FirstCellHeight(o.y_plus, o.reynolds, L);
+  // Largest spacing on the free surface away from the hull (0: no cap).
+  const double h_wave =
+      o.wave_froude > 0.0 ? 2.0 * std::numbers::pi * o.wave_froude * o.wave_froude * L / o.cells_per_wave : 0.0;
+  // A capped distribution, or the error naming the option whose count is short.
+  auto capped = [&](const char* key, int n, double length, double h1) {
+    try {
+      return CappedGeometricNodes(n, length, h1, h_wave);
+    } catch (const ConfigError& e) {
+      throw ConfigError(fmt::format("hull grid option '{}' = {} with waves at Fn {} and {} cells per wavelength ({:.4g} m): {}",
+                                    key, n, o.wave_froude, o.cells_per_wave, h_wave, e.what()));
+    }
+  };
 
   // Stations.
   const std::vector<double> sx = TwoSidedNodes(o.cells_hull, L, o.end_spacing * L / o.cells_hull,
                                                o.end_spacing * L / o.cells_hull);
   const std::vector<double> up =
-      GeometricNodes(o.cells_upstream, o.upstream * L, sx[o.cells_hull] - sx[o.cells_hull - 1]);
-  const std::vector<double> down =
-      GeometricNodes(o.cells_downstream, o.downstream * L, sx[1] - sx[0]);
+      capped("cells_upstream", o.cells_upstream, o.upstream * L, sx[o.cells_hull] - sx[o.cells_hull - 1]);
+  const std::vector<double> down = capped("cells_downstream", o.cells_downstream, o.downstream * L, sx[1] - sx[0]);
   std::vector<double> x;
   for (int i = o.cells_downstream; i >= 1; --i) x.push_back(xa - down[i]);
   for (double s : sx) x.push_back(xa + s);
@@ -128,7 +144,7 @@ Mesh MakeHullGrid(const HullSections& hull, const HullGridOptions& o, HullGridIn
   points.reserve(pid.size());
   double max_tilt = 0.0;
   // Hull-to-side distribution, normalised to [0, 1].
-  std::vector<double> sigma = GeometricNodes(ni, W, h_wall);
+  std::vector<double> sigma = capped("cells_normal", ni, W, h_wall);
   for (double& v : sigma) v /= W;
 
   struct Station {

@@ -42,6 +42,15 @@ struct HullGridOptions {
   // Vertical spacing at z = 0 and at the keel relative to the mean draft / cells_girth.
   double free_surface_spacing = 0.3;
   double keel_spacing = 0.6;
+  // Free-surface waves: with wave_froude > 0, the spacing ahead of the bow,
+  // behind the stern and from the hull to the sides grows from its first
+  // cell only up to the transverse wavelength 2 pi Fn^2 L over
+  // cells_per_wave and then stays uniform (CappedGeometricNodes), so the
+  // Kelvin pattern is resolved over the whole free surface; the cell counts
+  // must then be large enough to cover the domain at that spacing (the
+  // error names the count needed). 0: plain geometric growth.
+  double wave_froude = 0.0;
+  double cells_per_wave = 16.0;
   // First wall-normal cell height from a target y+ at Re = U L / nu (see
   // FirstCellHeight: ITTC-57 friction).
   double y_plus = 1.0;

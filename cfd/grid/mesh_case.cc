@@ -111,7 +111,7 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
   MeshCase c;
   c.source = source;
   const ConfigNode mesh = root["mesh"];
-  mesh.ExpectKeys({"method", "hull", "flow", "y_plus", "domain", "structured", "snappy", "family"});
+  mesh.ExpectKeys({"method", "hull", "flow", "y_plus", "domain", "structured", "snappy", "family", "waves"});
 
   const std::string method = mesh.Get<std::string>("method", "structured");
   if (method == "structured") {
@@ -178,6 +178,12 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
   if (c.method == MeshMethod::kSnappy && c.wigley) {
     mesh["method"].Fail(
         "'structured' for the Wigley formula (the snappy path needs a ship file with a surface)");
+  }
+  if (auto w = mesh.Find("waves")) {
+    if (c.method != MeshMethod::kStructured) w->Fail("no 'waves' section: wave spacing is for method 'structured' only");
+    w->ExpectKeys({"froude", "cells_per_wavelength"});
+    c.structured.wave_froude = w->GetPositive("froude");
+    c.structured.cells_per_wave = Number(*w, "cells_per_wavelength", c.structured.cells_per_wave, 0.0);
   }
   if (auto f = mesh.Find("family")) {
     f->ExpectKeys({"ratio"});

@@ -55,6 +55,46 @@ std::vector<double> GeometricNodes(int n, double length, double h1) {
   return s;
 }
 
+std::vector<double> CappedGeometricNodes(int n, double length, double h1, double h_max) {
+  if (!(h_max > 0.0)) return GeometricNodes(n, length, h1);
+  const double q_free = GeometricRatio(n, length, h1);
+  if (q_free <= 1.0 || h1 * std::pow(q_free, n - 1) <= h_max) return GeometricNodes(n, length, h1);
+  if (h1 + (n - 1) * h_max < length * (1.0 - 1e-12)) {
+    throw ConfigError(fmt::format(
+        "capped spacing: {} cells of at most {} m cannot cover {} m (at least {} cells are needed)", n, h_max,
+        length, 1 + static_cast<int>(std::ceil((length - h1) / h_max))));
+  }
+  // Sum of the capped spacings for ratio q >= q_free > 1; monotone in q.
+  auto total = [&](double q) {
+    double sum = 0.0, h = h1;
+    for (int i = 0; i < n; ++i) {
+      sum += std::min(h, h_max);
+      h *= q;
+    }
+    return sum;
+  };
+  double lo = q_free, hi = q_free;
+  while (total(hi) < length) {
+    hi = 1.0 + 2.0 * (hi - 1.0);
+    if (hi > 1e6) break;  // the cap alone covers the length: the limit q -> infinity
+  }
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (total(mid) < length ? lo : hi) = mid;
+  }
+  const double q = 0.5 * (lo + hi);
+  std::vector<double> s(n + 1, 0.0);
+  double h = h1;
+  for (int i = 1; i <= n; ++i) {
+    s[i] = s[i - 1] + std::min(h, h_max);
+    h *= q;
+  }
+  const double scale = length / s[n];
+  for (double& v : s) v *= scale;
+  s[n] = length;
+  return s;
+}
+
 std::vector<double> TwoSidedNodes(int n, double length, double h0, double h1) {
   if (n < 1 || !(h0 > 0) || !(h1 > 0) || !(length > 0)) {
     throw ConfigError(

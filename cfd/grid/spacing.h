@@ -12,6 +12,14 @@ namespace kelvin::cfd {
 // ConfigError if n < 1, h1 <= 0 or length <= 0.
 std::vector<double> GeometricNodes(int n, double length, double h1);
 
+// GeometricNodes with the spacing capped at h_max: s_{i+1} - s_i =
+// min(h1 q^i, h_max), q > 1 solved so that the nodes end at `length` (the
+// grid grows away from a wall and then stays uniform, e.g. at the spacing
+// that resolves the free-surface waves). Falls back to GeometricNodes when
+// h_max <= 0 or when the uncapped spacing never exceeds h_max. Throws
+// ConfigError when n cells at most h_max wide cannot cover the length.
+std::vector<double> CappedGeometricNodes(int n, double length, double h1, double h_max);
+
 // The growth ratio q of GeometricNodes.
 double GeometricRatio(int n, double length, double h1);
 

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 
 #include "cfd/geometry/hydrostatics.h"
@@ -159,6 +160,53 @@ TEST(HullGridTest, PatchesLieOnTheDomainPlanesAndTheHull) {
       },
       Vector3::Zero());
   EXPECT_LT(mesh.Quality().boundary_openness, 1e-12);
+}
+
+// With waves, every free-surface face off the hull is at most the transverse
+// wavelength 2 pi Fn^2 L over cells_per_wavelength long and wide; without,
+// the same counts grow the far-field faces beyond it. A count too
+// small to cover the domain at that spacing is refused with the count needed.
+TEST(HullGridTest, WaveSpacingCapsTheFreeSurfaceFaces) {
+  const WigleySections wigley(kL, kB, kT);
+  HullGridOptions o = Options();
+  o.y_plus = 50.0;
+  o.cells_upstream = 24;
+  o.cells_downstream = 40;
+  o.cells_normal = 40;
+  o.wave_froude = 0.4;
+  o.cells_per_wave = 8.0;
+  const double cap = 2.0 * std::numbers::pi * 0.4 * 0.4 * kL / 8.0;  // 0.314 m
+  auto largest_extent = [](const Mesh& mesh) {
+    const Patch& p = mesh.patches()[mesh.FindPatch("freeSurface")];
+    double largest = 0.0;
+    for (int f = p.start; f < p.start + p.size; ++f) {
+      const auto face = mesh.faces()[f];
+      double x0 = 1e30, x1 = -1e30, y0 = 1e30, y1 = -1e30;
+      for (int q : face) {
+        x0 = std::min(x0, mesh.points()[q].x());
+        x1 = std::max(x1, mesh.points()[q].x());
+        y0 = std::min(y0, mesh.points()[q].y());
+        y1 = std::max(y1, mesh.points()[q].y());
+      }
+      largest = std::max({largest, x1 - x0, y1 - y0});
+    }
+    return largest;
+  };
+  const Mesh waves = MakeHullGrid(wigley, o);
+  o.wave_froude = 0.0;
+  const Mesh plain = MakeHullGrid(wigley, o);
+  const double with_cap = largest_extent(waves), without = largest_extent(plain);
+  fmt::print("largest free-surface face extent: {:.4f} m with waves (cap {:.4f} m), {:.4f} m without\n", with_cap,
+             cap, without);
+  EXPECT_LE(with_cap, cap * (1 + 1e-9));
+  EXPECT_GT(without, 1.3 * cap);  // measured 1.46 cap
+  EXPECT_EQ(waves.n_cells(), plain.n_cells());
+  EXPECT_LT(waves.Quality().max_non_orthogonality, 60.0);
+
+  o.wave_froude = 0.4;
+  o.cells_downstream = 10;
+  EXPECT_THAT(ErrorOf([&] { MakeHullGrid(wigley, o); }),
+              AllOf(HasSubstr("'cells_downstream' = 10"), HasSubstr("cells are needed")));
 }
 
 TEST(HullGridTest, WigleyFamilyQualityAndCellCounts) {

@@ -115,6 +115,10 @@ TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
   EXPECT_THAT(
       ErrorOf([] { Parse(Edit("ratio: 1.41421356", "ratio: 1.05")); }),
       HasSubstr("key 'mesh.family.ratio' = '1.05': expected a refinement ratio in [1.1, 4]"));
+  EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  y_plus: 1.0\n  waves: {froude: -0.3}")); }),
+              HasSubstr("key 'mesh.waves.froude' = '-0.3': expected a positive number"));
+  EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  y_plus: 1.0\n  waves: {froude: 0.3, cells: 12}")); }),
+              HasSubstr("unknown key 'mesh.waves.cells'"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("  directory: out", "  folder: out")); }),
               HasSubstr("unknown key 'output.folder'; valid keys: directory, vtu"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("method: structured", "method: snappy")); }),

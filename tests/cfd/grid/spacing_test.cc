@@ -35,6 +35,44 @@ TEST(SpacingTest, GeometricNodesHaveTheFirstSpacingAConstantRatioAndExactEnds) {
   for (int i = 1; i < 30; ++i) EXPECT_NEAR((s[i + 1] - s[i]) / (s[i] - s[i - 1]), q, 1e-9);
 }
 
+// Growth from the wall, then uniform at the cap: the spacing never exceeds
+// it, grows by a constant ratio until it reaches it, and the ends are exact.
+TEST(SpacingTest, CappedGeometricNodesGrowThenStayAtTheCap) {
+  const double h1 = 1e-3, cap = 0.25, length = 9.0;
+  const int n = 50;
+  const auto s = CappedGeometricNodes(n, length, h1, cap);
+  ASSERT_EQ(s.size(), 51u);
+  EXPECT_EQ(s.front(), 0.0);
+  EXPECT_EQ(s.back(), length);
+  // Uncapped, the same count would end with cells far above the cap.
+  const auto free = GeometricNodes(n, length, h1);
+  EXPECT_GT(free[n] - free[n - 1], 4 * cap);
+  int at_cap = 0;
+  const double q = (s[2] - s[1]) / (s[1] - s[0]);
+  EXPECT_GT(q, 1.0);
+  for (int i = 0; i < n; ++i) {
+    const double h = s[i + 1] - s[i];
+    EXPECT_LE(h, cap * (1 + 1e-9)) << "cell " << i;
+    if (h > cap * (1 - 1e-9)) {
+      ++at_cap;
+    } else if (i > 0) {
+      EXPECT_NEAR(h / (s[i] - s[i - 1]), q, 1e-9 * q) << "cell " << i;
+    }
+  }
+  EXPECT_GT(at_cap, 25);  // most of the 9 m at 0.25 m
+  EXPECT_NEAR(s[1] - s[0], h1, 1e-12);
+  // No cap needed: the plain distribution.
+  EXPECT_EQ(CappedGeometricNodes(n, length, h1, 0.0), free);
+  EXPECT_EQ(CappedGeometricNodes(n, length, h1, 100.0), free);
+  // Too few cells for the cap: the error says how many are needed.
+  try {
+    CappedGeometricNodes(20, length, h1, cap);
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("at least 37 cells are needed"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SpacingTest, GeometricRatioBelowOneWhenTheFirstSpacingIsLarge) {
   const std::vector<double> s = GeometricNodes(10, 1.0, 0.2);
   EXPECT_LT(GeometricRatio(10, 1.0, 0.2), 1.0);
