@@ -14,6 +14,7 @@
 //     domain: {upstream: 1, downstream: 2, half_width: 1, depth: 1}   # hull lengths
 //     structured: {cells_hull: 60, ...}   # HullGridOptions
 //     snappy: {base_cells_per_length: 10, hull_level: 3, ...}   # SnappyOptions
+//     waves: {froude: 0.316, cells_per_wavelength: 16}   # optional, structured only
 //     family: {ratio: 1.41421356}
 //   output:
 //     directory: grids/wigley   # relative to the case file

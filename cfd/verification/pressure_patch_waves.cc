@@ -2,58 +2,76 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
-#include <complex>
+#include <limits>
 #include <numbers>
 #include <unsupported/Eigen/FFT>
 
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
+namespace {
 
-void PressurePatchWaveOptions::Validate() const {
-  auto positive = [](double v, const char* name) {
-    if (!(v > 0.0) || !std::isfinite(v)) {
-      throw ConfigError(fmt::format("pressure patch waves: {} = {}; expected a finite value > 0", name, v));
-    }
-  };
-  positive(g, "g");
-  positive(speed, "speed");
-  positive(depth, "depth");
-  positive(radius, "radius");
-  positive(head, "head");
-  positive(spacing, "spacing");
-  positive(box_length, "box_length");
-  positive(box_width, "box_width");
-  positive(damping_length, "damping_length");
-  if (!std::isfinite(origin_x) || !std::isfinite(origin_y)) {
-    throw ConfigError(fmt::format("pressure patch waves: origin = ({}, {}); expected finite values",
-                                  origin_x, origin_y));
-  }
-  // The grid must resolve the patch and the box must hold many damping
-  // lengths' worth of decay before the waves wrap around.
-  if (spacing > 0.25 * radius) {
-    throw ConfigError(fmt::format(
-        "pressure patch waves: spacing = {} m; expected at most radius / 4 = {} m", spacing, 0.25 * radius));
-  }
-  if (box_length < 5.0 * damping_length) {
-    throw ConfigError(fmt::format(
-        "pressure patch waves: box_length = {} m; expected at least 5 damping lengths ({} m)", box_length,
-        5.0 * damping_length));
+void RequirePositive(const char* what, double v, const char* name) {
+  if (!(v > 0.0) || !std::isfinite(v)) {
+    throw ConfigError(fmt::format("{}: {} = {}; expected a finite value > 0", what, name, v));
   }
 }
 
-PressurePatchWaves::PressurePatchWaves(const PressurePatchWaveOptions& options) : options_(options) {
-  options_.Validate();
-  const auto& o = options_;
-  nx_ = 2 * static_cast<int>(std::ceil(0.5 * o.box_length / o.spacing));
-  ny_ = 2 * static_cast<int>(std::ceil(0.5 * o.box_width / o.spacing));
-  const double lx = nx_ * o.spacing, ly = ny_ * o.spacing;
+// Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre
+// recurrence), for the vertical integral of the thin-ship sources.
+void GaussLegendre(int n, std::vector<double>& x, std::vector<double>& w) {
+  x.assign(n, 0.0);
+  w.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    double t = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 0.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = t;
+      for (int m = 2; m <= n; ++m) {
+        const double p2 = ((2.0 * m - 1.0) * t * p1 - (m - 1.0) * p0) / m;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (t * p1 - p0) / (t * t - 1.0);
+      const double step = p1 / dp;
+      t -= step;
+      if (std::abs(step) < 1e-15) break;
+    }
+    x[i] = t;
+    w[i] = 2.0 / ((1.0 - t * t) * dp * dp);
+  }
+}
+
+}  // namespace
+
+SteadyWaveField::SteadyWaveField(const char* what, const WaveBoxOptions& box, double depth, double finest_length,
+                                 const Forcing& forcing)
+    : box_(box) {
+  RequirePositive(what, box.g, "g");
+  RequirePositive(what, box.speed, "speed");
+  RequirePositive(what, box.spacing, "spacing");
+  RequirePositive(what, box.box_length, "box_length");
+  RequirePositive(what, box.box_width, "box_width");
+  RequirePositive(what, box.damping_length, "damping_length");
+  if (!std::isfinite(box.origin_x) || !std::isfinite(box.origin_y)) {
+    throw ConfigError(fmt::format("{}: origin = ({}, {}); expected finite values", what, box.origin_x, box.origin_y));
+  }
+  // The grid must resolve the disturbance and the box must hold enough
+  // decay before the waves wrap around.
+  if (box.spacing > 0.25 * finest_length) {
+    throw ConfigError(fmt::format("{}: spacing = {} m; expected at most {} m (a quarter of the disturbance's scale)",
+                                  what, box.spacing, 0.25 * finest_length));
+  }
+  if (box.box_length < 5.0 * box.damping_length) {
+    throw ConfigError(fmt::format("{}: box_length = {} m; expected at least 5 damping lengths ({} m)", what,
+                                  box.box_length, 5.0 * box.damping_length));
+  }
+  nx_ = 2 * static_cast<int>(std::ceil(0.5 * box.box_length / box.spacing));
+  ny_ = 2 * static_cast<int>(std::ceil(0.5 * box.box_width / box.spacing));
+  const double lx = nx_ * box.spacing, ly = ny_ * box.spacing;
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
-  const double eps = o.speed / (2.0 * o.damping_length);
-  const double p0 = o.g * o.head;
-  const double r2 = o.radius * o.radius;
-  // Signed FFT wavenumber of index n on a grid of N points over length L.
+  const double eps = box.speed / (2.0 * box.damping_length);
   auto wavenumber = [kTwoPi](int n, int count, double length) {
     return kTwoPi * (n < count / 2 ? n : n - count) / length;
   };
@@ -69,11 +87,10 @@ PressurePatchWaves::PressurePatchWaves(const PressurePatchWaveOptions& options) 
       const double k = std::hypot(a, b);
       std::complex<double> value = 0.0;
       if (k > 0.0) {
-        const double kt = k * std::tanh(k * o.depth);
-        const std::complex<double> omega(a * o.speed, -eps);
-        const double pressure = p0 * std::numbers::pi * r2 * std::exp(-0.25 * k * k * r2);
-        value = -pressure * kt / (o.g * kt - omega * omega) *
-                std::exp(std::complex<double>(0.0, a * o.origin_x + b * o.origin_y)) / (lx * ly);
+        const double kt = std::isinf(depth) ? k : k * std::tanh(k * depth);
+        const std::complex<double> omega(a * box.speed, -eps);
+        value = forcing(a, b, k) / (box.g * kt - omega * omega) *
+                std::exp(std::complex<double>(0.0, a * box.origin_x + b * box.origin_y)) / (lx * ly);
       }
       field[static_cast<std::size_t>(i) * ny_ + j] = value;
     }
@@ -82,7 +99,7 @@ PressurePatchWaves::PressurePatchWaves(const PressurePatchWaveOptions& options) 
   // Inverse 2D transform, unscaled (the 1 / (Lx Ly) is in the spectrum).
   Eigen::FFT<double> fft;
   fft.SetFlag(Eigen::FFT<double>::Unscaled);
-  std::vector<std::complex<double>> in(std::max(nx_, ny_)), out;
+  std::vector<std::complex<double>> in, out;
   for (int i = 0; i < nx_; ++i) {  // along y
     in.assign(field.begin() + static_cast<std::ptrdiff_t>(i) * ny_,
               field.begin() + static_cast<std::ptrdiff_t>(i + 1) * ny_);
@@ -98,14 +115,86 @@ PressurePatchWaves::PressurePatchWaves(const PressurePatchWaveOptions& options) 
   }
 }
 
-double PressurePatchWaves::Elevation(double x, double y) const {
-  auto index = [](double s, int count) {
-    const long n = std::lround(s);
-    return static_cast<int>(((n % count) + count) % count);
-  };
-  const int i = index((x - options_.origin_x) / options_.spacing, nx_);
-  const int j = index((y - options_.origin_y) / options_.spacing, ny_);
+double SteadyWaveField::Node(int i, int j) const {
+  i = ((i % nx_) + nx_) % nx_;
+  j = ((j % ny_) + ny_) % ny_;
   return eta_[static_cast<std::size_t>(i) * ny_ + j];
 }
+
+double SteadyWaveField::Elevation(double x, double y) const {
+  return Node(static_cast<int>(std::lround((x - box_.origin_x) / box_.spacing)),
+              static_cast<int>(std::lround((y - box_.origin_y) / box_.spacing)));
+}
+
+double SteadyWaveField::Interpolate(double x, double y) const {
+  const double u = (x - box_.origin_x) / box_.spacing, v = (y - box_.origin_y) / box_.spacing;
+  const double fu = std::floor(u), fv = std::floor(v);
+  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
+  const double s = u - fu, t = v - fv;
+  return (1 - s) * (1 - t) * Node(i, j) + s * (1 - t) * Node(i + 1, j) + (1 - s) * t * Node(i, j + 1) +
+         s * t * Node(i + 1, j + 1);
+}
+
+PressurePatchWaves::PressurePatchWaves(const PressurePatchWaveOptions& o)
+    : SteadyWaveField(
+          "pressure patch waves", o,
+          [&o] {
+            RequirePositive("pressure patch waves", o.depth, "depth");
+            RequirePositive("pressure patch waves", o.radius, "radius");
+            RequirePositive("pressure patch waves", o.head, "head");
+            return o.depth;
+          }(),
+          o.radius, [&o](double, double, double k) -> std::complex<double> {
+            const double r2 = o.radius * o.radius;
+            const double pressure = o.g * o.head * std::numbers::pi * r2 * std::exp(-0.25 * k * k * r2);
+            return -pressure * k * std::tanh(k * o.depth);
+          }) {}
+
+namespace {
+
+// Checks the hull before the field is built; returns the finest scale the
+// grid must resolve (a tenth of the length: spacing at most L / 40).
+double CheckHull(const ThinShipWaveOptions& o) {
+  RequirePositive("thin ship waves", o.length, "length");
+  RequirePositive("thin ship waves", o.beam, "beam");
+  RequirePositive("thin ship waves", o.draft, "draft");
+  if (!(o.cutoff_wavelength >= 0.0) || !std::isfinite(o.cutoff_wavelength)) {
+    throw ConfigError(
+        fmt::format("thin ship waves: cutoff_wavelength = {}; expected a finite value >= 0", o.cutoff_wavelength));
+  }
+  if (!std::isfinite(o.centre_x)) {
+    throw ConfigError(fmt::format("thin ship waves: centre_x = {}; expected a finite value", o.centre_x));
+  }
+  return 0.1 * o.length;
+}
+
+}  // namespace
+
+ThinShipWaves::ThinShipWaves(const ThinShipWaveOptions& o)
+    : SteadyWaveField("thin ship waves", o, std::numeric_limits<double>::infinity(), CheckHull(o),
+                      [&o](double a, double, double k) -> std::complex<double> {
+                        // x: integral over the hull of df/dx e^{-i a x} = 2 i B e^{-i a x_c}
+                        // (sin s - s cos s) / s^2 with s = a L / 2 (series near s = 0).
+                        const double s = 0.5 * a * o.length;
+                        const double shape = std::abs(s) < 1e-4 ? s / 3.0 : (std::sin(s) - s * std::cos(s)) / (s * s);
+                        const std::complex<double> x_part =
+                            std::complex<double>(0.0, 2.0 * o.beam * shape) *
+                            std::exp(std::complex<double>(0.0, -a * o.centre_x));
+                        // z: integral over [-T, 0] of (1 - (z/T)^2) e^{k z}.
+                        static thread_local std::vector<double> xq, wq;
+                        if (xq.empty()) GaussLegendre(32, xq, wq);
+                        double z_part = 0.0;
+                        for (std::size_t q = 0; q < xq.size(); ++q) {
+                          const double z = -0.5 * o.draft * (xq[q] + 1.0);
+                          z_part += 0.5 * o.draft * wq[q] * (1.0 - (z / o.draft) * (z / o.draft)) * std::exp(k * z);
+                        }
+                        // m = 2 U df/dx; S = i a U M^, low-pass filtered.
+                        double filter = 1.0;
+                        if (o.cutoff_wavelength > 0.0) {
+                          const double r = k * o.cutoff_wavelength / (2.0 * std::numbers::pi);
+                          filter = std::exp(-r * r * r * r);
+                        }
+                        return std::complex<double>(0.0, a * o.speed) * 2.0 * o.speed * x_part * z_part * filter;
+                      }) {}
 
 }  // namespace kelvin::cfd

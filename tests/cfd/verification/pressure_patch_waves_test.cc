@@ -123,6 +123,116 @@ TEST(PressurePatchWaves, TransverseWavelengthAndRadiationCondition) {
   EXPECT_NEAR(peak40 / peak80, std::exp(-3.0 * rate * (1.0 / 40.0 - 1.0 / 80.0)), 0.01);
 }
 
+// Michell's thin ship (a 6 m Wigley, L/B 10, B/T 1.6). At Fn 0.005 the free
+// waves are far too short to be excited, and the surface follows the
+// double-body (rigid-lid) flow of the centreplane sources: eta = -(U/g)
+// phi_x with phi = -(1/(2 pi)) integral m / R (source and image), m = 2 U
+// df/dx. That integral by Gauss quadrature, at points off the hull, checks
+// the source density, its transform and the shift to midship.
+TEST(ThinShipWaves, RigidLidLimitAtCreepingSpeed) {
+  ThinShipWaveOptions o;
+  o.length = 6.0;
+  o.beam = 0.6;
+  o.draft = 0.375;
+  o.centre_x = 1.0;
+  o.speed = 0.005 * std::sqrt(kG * o.length);
+  o.spacing = 0.04;
+  o.box_length = 60.0;
+  o.box_width = 24.0;
+  o.damping_length = 6.0;
+  const ThinShipWaves waves(o);
+  // Gauss-Legendre on [-1, 1], 64 points (by the recurrence, as in the class).
+  auto gauss = [](int n, std::vector<double>& x, std::vector<double>& w) {
+    x.assign(n, 0.0);
+    w.assign(n, 0.0);
+    for (int i = 0; i < n; ++i) {
+      double t = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 0.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = t;
+        for (int m = 2; m <= n; ++m) {
+          const double p2 = ((2.0 * m - 1.0) * t * p1 - (m - 1.0) * p0) / m;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = n * (t * p1 - p0) / (t * t - 1.0);
+        t -= p1 / dp;
+      }
+      x[i] = t;
+      w[i] = 2.0 / ((1.0 - t * t) * dp * dp);
+    }
+  };
+  std::vector<double> gx, gw;
+  gauss(64, gx, gw);
+  auto rigid_lid = [&](double x, double y) {
+    double sum = 0.0;  // integral of f_x (x - xi) / R^3 over the centreplane
+    for (std::size_t a = 0; a < gx.size(); ++a) {
+      const double xi = o.centre_x + 0.5 * o.length * gx[a];
+      const double fx = -(2.0 * o.beam / o.length) * gx[a];  // df/dx at depth 0, bow upstream
+      for (std::size_t b = 0; b < gx.size(); ++b) {
+        const double z = -0.5 * o.draft * (gx[b] + 1.0);
+        const double r2 = (x - xi) * (x - xi) + y * y + z * z;
+        sum += 0.25 * o.length * o.draft * gw[a] * gw[b] * fx * (1.0 - (z / o.draft) * (z / o.draft)) * (x - xi) /
+               (r2 * std::sqrt(r2));
+      }
+    }
+    return -o.speed * o.speed / (std::numbers::pi * kG) * sum;
+  };
+  double worst = 0.0, scale = 0.0;
+  for (double fx : {-0.8, -0.5, -0.2, 0.0, 0.2, 0.5, 0.8}) {
+    for (double fy : {0.2, 0.4}) {
+      const double x = o.centre_x + fx * o.length, y = fy * o.length;
+      const double exact = rigid_lid(x, y);
+      scale = std::max(scale, std::abs(exact));
+      worst = std::max(worst, std::abs(waves.Interpolate(x, y) - exact));
+    }
+  }
+  std::printf("thin ship at Fn 0.005: max |eta - rigid-lid eta| = %.2e of the largest (%.3e m)\n", worst / scale,
+              scale);
+  // The bilinear interpolation between nodes 4 cm apart (1e-4 here) and
+  // the neglected O(Fn^2 L k) wave correction at the resolved wavenumbers.
+  EXPECT_LT(worst, 0.01 * scale);
+}
+
+// At speed: the transverse waves behind the hull have the deep-water length
+// 2 pi U^2 / g, and nothing travels ahead of the bow: from one wavelength
+// ahead on, what is left is the decaying rise of the bow's stagnation and
+// the waves that wrapped around the periodic box (measured: 4% of the waves
+// behind in this 400 x 120 m box, 9% in a 200 x 60 m one).
+TEST(ThinShipWaves, TransverseWavelengthBehindAndCalmAhead) {
+  ThinShipWaveOptions o;
+  o.length = 6.0;
+  o.beam = 0.6;
+  o.draft = 0.375;
+  o.speed = 0.316 * std::sqrt(kG * o.length);
+  o.spacing = 0.1;
+  o.cutoff_wavelength = 0.4;
+  o.box_length = 400.0;
+  o.box_width = 120.0;
+  const ThinShipWaves waves(o);
+  const double lambda = 2.0 * std::numbers::pi * o.speed * o.speed / kG;
+  std::vector<double> crossings;
+  double last_x = 0.0, last_eta = 0.0;
+  const double from = 0.5 * o.length + 4.0 * lambda, to = from + 6.0 * lambda;
+  for (double x = from; x <= to; x += o.spacing) {
+    const double eta = waves.Elevation(x, 0.0);
+    if (x > from && eta * last_eta < 0.0) crossings.push_back(last_x + (x - last_x) * last_eta / (last_eta - eta));
+    last_x = x;
+    last_eta = eta;
+  }
+  ASSERT_GE(crossings.size(), 6u);
+  const double measured = 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  double behind = 0.0, ahead = 0.0;
+  for (double x = from; x <= to; x += o.spacing) behind = std::max(behind, std::abs(waves.Elevation(x, 0.0)));
+  for (double x = -0.5 * o.length - lambda; x >= -0.5 * o.length - 4.0 * lambda; x -= o.spacing) {
+    ahead = std::max(ahead, std::abs(waves.Elevation(x, 0.0)));
+  }
+  std::printf("thin ship at Fn 0.316: transverse wavelength %.4f m against 2 pi U^2/g = %.4f m; ahead of the bow "
+              "max |eta| %.4f of the waves behind (from one wavelength on)\n",
+              measured, lambda, ahead / behind);
+  EXPECT_NEAR(measured / lambda, 1.0, 0.01);
+  EXPECT_LT(ahead, 0.1 * behind);
+}
+
 std::string Message(const PressurePatchWaveOptions& o) {
   try {
     PressurePatchWaves waves(o);
@@ -139,7 +249,7 @@ TEST(PressurePatchWaves, BadOptionsNameTheField) {
   EXPECT_THAT(Message(o), HasSubstr("depth = -1; expected a finite value > 0"));
   o = Patch(1.0, 0.5);
   o.spacing = 0.2;
-  EXPECT_THAT(Message(o), HasSubstr("spacing = 0.2 m; expected at most radius / 4"));
+  EXPECT_THAT(Message(o), HasSubstr("spacing = 0.2 m; expected at most 0.0625 m"));
   o = Patch(1.0, 0.5);
   o.box_length = 190.0;
   EXPECT_THAT(Message(o), HasSubstr("box_length = 190 m; expected at least 5 damping lengths"));
