@@ -348,6 +348,18 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Pi
       w.WriteArray(grp + "/eta", WaveCut(s, eta, y0, x), {x.size()}, "m", "wave elevation (NaN outside the patch)");
       w.SetAttribute(grp, "y", y0);
     }
+    // The whole pattern, face by face, for plots and comparisons (h5py).
+    const std::size_t nf = eta.size();
+    std::vector<double> fx(nf), fy(nf);
+    for (std::size_t i = 0; i < nf; ++i) {
+      fx[i] = s.centres()[i].x();
+      fy[i] = s.centres()[i].y();
+    }
+    w.WriteArray("surface/x", fx, {nf}, "m", "free-surface face centre x");
+    w.WriteArray("surface/y", fy, {nf}, "m", "free-surface face centre y");
+    w.WriteArray("surface/area", s.areas(), {nf}, "m^2", "free-surface face area");
+    w.WriteArray("surface/eta", eta, {nf}, "m", "wave elevation");
+    w.WriteArray("surface/damping", fs->damping(), {nf}, "1/s", "beach damping rate (0 outside the beaches)");
     const double mx = *std::max_element(eta.begin(), eta.end()), mn = *std::min_element(eta.begin(), eta.end());
     scalar("eta_max", mx, "m", "largest wave elevation on the patch");
     scalar("eta_min", mn, "m", "lowest wave elevation on the patch");
