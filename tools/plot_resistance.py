@@ -6,6 +6,8 @@ Usage: tools/plot_resistance.py RESULT_DIR [RESULT_DIR ...]
 Reads RESULT_DIR/resistance.h5 and writes next to it
   wave_cuts.png     eta along the y = const cuts (x / L)
   wave_profile.png  eta along the hull waterline, port and starboard
+  wave_pattern.png  eta over the free surface (plan view, x / L and y / L), with
+                    the Kelvin wedge (19.47 deg) drawn from the bow
   convergence.png   R_T, R_F, R_P and the relative changes per window
 """
 import math
@@ -22,6 +24,36 @@ import numpy as np  # noqa: E402
 
 def scalar(f, name, default=math.nan):
     return float(f[name][0]) if name in f else default
+
+
+def plot_pattern(f, length, title, out):
+    """Plan view of eta on the free-surface faces (triangulated centres)."""
+    x = f["surface/x"][:] / length
+    y = f["surface/y"][:] / length
+    eta = f["surface/eta"][:] / length * 1e3
+    lim = float(np.percentile(np.abs(eta), 99.5)) or 1.0
+    fig, ax = plt.subplots(figsize=(10, 4.5))
+    cs = ax.tricontourf(x, y, eta, levels=np.linspace(-lim, lim, 25), cmap="RdBu_r", extend="both")
+    fig.colorbar(cs, ax=ax, label="eta / L x 1000")
+    # Kelvin wedge from the bow (the largest x of the hull waterline if
+    # known, else the patch's x at the hole), trailing toward smaller x.
+    if "wave_profile/x" in f and len(f["wave_profile/x"]):
+        bow = float(np.max(f["wave_profile/x"][:])) / length
+        span = bow - x.min()
+        half = math.tan(math.radians(19.47)) * span
+        ax.plot([bow, bow - span], [0, half], "k--", lw=0.8)
+        ax.plot([bow, bow - span], [0, -half], "k--", lw=0.8, label="Kelvin wedge 19.47 deg")
+        ax.legend(loc="upper left", fontsize=8)
+    ax.set_aspect("equal")
+    ax.set_xlim(x.min(), x.max())
+    ax.set_ylim(y.min(), y.max())
+    ax.set_xlabel("x / L (flow from right to left)")
+    ax.set_ylabel("y / L")
+    ax.set_title(title)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out
 
 
 def plot(directory):
@@ -70,6 +102,9 @@ def plot(directory):
             fig.tight_layout()
             fig.savefig(out, dpi=120)
             plt.close(fig)
+            written.append(out)
+        if "surface" in f:
+            out = plot_pattern(f, length, title, os.path.join(directory, "wave_pattern.png"))
             written.append(out)
         h = f["history"][:]
         fig, (a1, a2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
