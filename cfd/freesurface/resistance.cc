@@ -143,6 +143,24 @@ Vector3 WaterlineForce(const PatchSurface& surface, std::span<const double> eta,
   return f;
 }
 
+PatchFaceForces ComputePatchFaceForces(const PimpleSolver& s, int patch_index, double rho, double nu) {
+  const Mesh& mesh = s.mesh();
+  const Patch& patch = mesh.patches()[patch_index];
+  const int ni = mesh.n_internal_faces();
+  const auto& bc = s.U().bc(patch_index);
+  PatchFaceForces out;
+  out.pressure.resize(patch.size);
+  out.viscous.resize(patch.size);
+  for (int i = 0; i < patch.size; ++i) {
+    const int f = patch.start + i;
+    out.pressure[i] = rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
+    const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) + bc.gradient_boundary()[i];
+    const double nu_f = s.turbulence() ? s.FaceViscosity(f) : nu;
+    out.viscous[i] = -rho * nu_f * sn_grad * mesh.face_area_magnitudes()[f];
+  }
+  return out;
+}
+
 ResistanceMonitor::ResistanceMonitor(const PimpleSolver& solver, ResistanceOptions options)
     : options_(std::move(options)) {
   const Mesh& mesh = solver.mesh();
@@ -327,6 +345,29 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Pi
   for (std::size_t r = 0; r < rows; ++r) std::copy(history_[r].begin(), history_[r].end(), h.begin() + 7 * r);
   w.WriteArray("history", h, {rows, 7}, "s, N, N, N, N, 1, 1",
                "per step: time, R_T, R_F, R_P, R_WL, force change, eta change (NaN before a full window)");
+  {
+    // Per hull face at the last step: where on the hull the resistance acts.
+    const Mesh& mesh = solver.mesh();
+    const Patch& patch = mesh.patches()[hull_];
+    const PatchFaceForces ff = ComputePatchFaceForces(solver, hull_, options_.rho, options_.nu);
+    const std::size_t n = static_cast<std::size_t>(patch.size);
+    std::vector<double> centre(3 * n), area(3 * n), fp(3 * n), fv(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const int f = patch.start + static_cast<int>(i);
+      for (int d = 0; d < 3; ++d) {
+        centre[3 * i + d] = mesh.face_centres()[f][d];
+        area[3 * i + d] = mesh.face_areas()[f][d];
+        fp[3 * i + d] = ff.pressure[i][d];
+        fv[3 * i + d] = ff.viscous[i][d];
+      }
+    }
+    w.WriteArray("hull_faces/centre", centre, {n, 3}, "m", "hull face centres (mesh axes)");
+    w.WriteArray("hull_faces/area", area, {n, 3}, "m^2", "hull face area vectors, out of the water into the hull");
+    w.WriteArray("hull_faces/pressure_force", fp, {n, 3}, "N", "pressure force of the water on each hull face");
+    w.WriteArray("hull_faces/viscous_force", fv, {n, 3}, "N", "viscous force of the water on each hull face");
+    w.WriteArray("hull_faces/direction", std::vector<double>{direction_.x(), direction_.y(), direction_.z()}, {3},
+                 "1", "unit resistance direction d (R = F . d)");
+  }
   if (const LinearizedFreeSurface* fs = FreeSurface(solver)) {
     scalar("R_WL", rwl, "N", "waterline-integral correction 0.5 rho g sum eta^2 n_x dl (not in R_T)");
     scalar("C_WL", rwl / q, "1", "R_WL / (0.5 rho S U^2)");

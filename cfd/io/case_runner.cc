@@ -509,17 +509,11 @@ namespace {
 
 // Pressure and viscous force on a patch (N): p is kinematic, so times rho.
 std::pair<Vector3, Vector3> PatchForce(const PimpleSolver& s, int patch_index, double rho, double nu) {
-  const Mesh& mesh = s.mesh();
-  const Patch& patch = mesh.patches()[patch_index];
-  const int ni = mesh.n_internal_faces();
+  const PatchFaceForces ff = ComputePatchFaceForces(s, patch_index, rho, nu);
   Vector3 fp = Vector3::Zero(), fv = Vector3::Zero();
-  const auto& bc = s.U().bc(patch_index);
-  for (int i = 0; i < patch.size; ++i) {
-    const int f = patch.start + i;
-    fp += rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
-    const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) + bc.gradient_boundary()[i];
-    // With a turbulence model the face carries nu + nu_t,wall (wall functions).
-    fv -= rho * (s.turbulence() ? s.FaceViscosity(f) : nu) * sn_grad * mesh.face_area_magnitudes()[f];
+  for (std::size_t i = 0; i < ff.pressure.size(); ++i) {
+    fp += ff.pressure[i];
+    fv += ff.viscous[i];
   }
   return {fp, fv};
 }

@@ -245,6 +245,27 @@ TEST(ResistanceCase, WritesCoefficientsConsistentWithItsForcesAndStops) {
   EXPECT_NEAR(total, 24.0 - 1.5, 1e-9);
   EXPECT_EQ(*std::max_element(eta.values.begin(), eta.values.end()), h.Read("eta_max").at(0));
   EXPECT_NE(run.message.find("C_T ="), std::string::npos);
+  // Per-face forces (hull_faces): one row per obstacle face below z = 0 (the
+  // 1.5 x 1 bottom of 3 x 2 cells and the sides, 2 x (3 + 2) x 1 cells), areas
+  // summing to S, and the faces' forces along d summing to R_P and R_F.
+  const data::Series area = h.Read("hull_faces/area"), fpf = h.Read("hull_faces/pressure_force");
+  const data::Series fvf = h.Read("hull_faces/viscous_force"), dir = h.Read("hull_faces/direction");
+  ASSERT_EQ(area.rows, 16u);
+  ASSERT_EQ(fpf.rows, area.rows);
+  ASSERT_EQ(fvf.rows, area.rows);
+  double s_sum = 0.0, rp = 0.0, rf = 0.0, closure = 0.0;
+  for (std::size_t i = 0; i < area.rows; ++i) {
+    s_sum += std::hypot(area.at(i, 0), area.at(i, 1), area.at(i, 2));
+    closure += area.at(i, 0);
+    for (int d = 0; d < 3; ++d) {
+      rp += fpf.at(i, d) * dir.at(d);
+      rf += fvf.at(i, d) * dir.at(d);
+    }
+  }
+  EXPECT_NEAR(s_sum, S, 1e-12);
+  EXPECT_NEAR(closure, 0.0, 1e-12);  // the wetted surface closed by the waterplane
+  EXPECT_NEAR(rp, h.Read("R_P").at(0), 1e-12 * std::abs(h.Read("R_T").at(0)));
+  EXPECT_NEAR(rf, h.Read("R_F").at(0), 1e-12 * std::abs(h.Read("R_T").at(0)));
 }
 
 // The steady state of the pseudo-transient march must not depend on the
