@@ -237,11 +237,11 @@ TEST(ResistanceCase, WritesCoefficientsConsistentWithItsForcesAndStops) {
   EXPECT_TRUE(h.Has("R_WL"));
   // The whole pattern: one row per free-surface face, areas summing to the
   // patch (6 x 4 m less the block's 1.5 x 1 m waterplane).
-  const data::Series area = h.Read("surface/area"), eta = h.Read("surface/eta");
-  ASSERT_EQ(area.rows, eta.rows);
+  const data::Series surface_area = h.Read("surface/area"), eta = h.Read("surface/eta");
+  ASSERT_EQ(surface_area.rows, eta.rows);
   EXPECT_EQ(h.Read("surface/x").rows, eta.rows);
   double total = 0.0;
-  for (double a : area.values) total += a;
+  for (double a : surface_area.values) total += a;
   EXPECT_NEAR(total, 24.0 - 1.5, 1e-9);
   EXPECT_EQ(*std::max_element(eta.values.begin(), eta.values.end()), h.Read("eta_max").at(0));
   EXPECT_NE(run.message.find("C_T ="), std::string::npos);
