@@ -13,18 +13,40 @@
 // The formulas are regressions over merchant-ship models at low Froude
 // number (no wave effect, within about +-20% of their data); the factor 2
 // allows for a slender hull outside that data set and the free surface at
-// Fn 0.32. Every run's nondimensional RMS fit residual is printed.
+// Fn 0.32.
+// Acceptance 4 also asks the identified set to reproduce the CFD forces of
+// every run: in every run and channel (X, Y, N) the nondimensional RMS
+// residual of the fit must stay below kResidualBound = 1/3 of the run's RMS
+// force. The forces carry no noise to speak of (period-to-period change
+// below 0.1%, see below), so the residual is model error alone: the cubic
+// polynomial's truncation over the drift range and, in the PMM runs, the
+// frequency-dependent force the quasi-steady MMG standard model has no term
+// for, above all N_vdot in pure sway (zero for a fore-aft symmetric hull in
+// slender-body theory; what the wake and the waves give it leaves a force in
+// quadrature with the modelled one). A residual of a third of the signal
+// still means every run's force within a third in amplitude and about 20
+// degrees in phase (the model explains 8/9 of its variance), much tighter
+// than the factor 2 allowed against the regression of other hulls above;
+// a run the set does not describe sits near 1 (as N' of pure sway did at
+// omega' = 3, tau = omega U / g = 0.31). At omega' = 1.2 the bound admits
+// an unmodelled N'_vdot up to |N'_v| / (3 omega') = 0.026, as large as the
+// value measured at omega' = 3. Y and N of the straight-ahead run vanish by
+// symmetry; there the residual is measured against the channel's largest
+// RMS in the campaign. Residuals, ratios and the classical PMM derivatives
+// (PMM against static drift) are printed.
 // Acceptance 4 also asks the PMM forces to be periodic after the ramp-up:
 // the first-harmonic amplitudes of Y and N over the last period differ from
 // those over the period before by less than 1% in every pure sway and pure
 // yaw run.
 // The same checks run on the quickstart's coarse campaign
-// (wigley_quick_*.yaml: 5k cells, 48 steps per period).
-// About 5.5 + 1.5 CPU-minutes (label slow).
+// (wigley_quick_*.yaml: 5k cells, 96 steps per period).
+// About 10 + 2 CPU-minutes (label slow).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -33,6 +55,7 @@
 
 #include "identification/captive_io.h"
 #include "identification/joint_fit.h"
+#include "identification/pmm_analysis.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::ident {
@@ -73,6 +96,9 @@ struct CampaignCase {
   const char* campaign;   // campaign file
   const char* directory;  // the campaign's run directory
 };
+
+// Largest RMS residual / RMS force of any run and channel (see the header).
+constexpr double kResidualBound = 1.0 / 3.0;
 
 class WigleyLfsCampaign : public ::testing::TestWithParam<CampaignCase> {};
 
@@ -119,10 +145,35 @@ TEST_P(WigleyLfsCampaign, LinearDerivativesHaveTheExpectedSignsAndMagnitudes) {
   EXPECT_EQ(harmonic_runs, 4);
   const JointFitResult fit = FitCampaign(c, JointFitOptions{}, p.name);
   ASSERT_TRUE(fit.converged) << fit.solver_report;
+  // Every run reproduced: in each channel the RMS residual of the identified
+  // set is below kResidualBound times the run's RMS force (see the header).
+  // Y and N of the straight-ahead run vanish by symmetry (and so does the
+  // model's), so there the residual is measured against the largest RMS of
+  // that channel over the campaign.
+  std::array<double, 3> largest{};
   for (const RunFitStatistics& r : fit.runs) {
-    std::printf("%-16s RMS residual / RMS measured: X %.3g/%.3g  Y %.3g/%.3g  N %.3g/%.3g\n", r.run.c_str(),
-                r.rms_residual[0], r.rms_measured[0], r.rms_residual[1], r.rms_measured[1], r.rms_residual[2],
-                r.rms_measured[2]);
+    for (int ch = 0; ch < 3; ++ch) largest[ch] = std::max(largest[ch], r.rms_measured[ch]);
+  }
+  for (const RunFitStatistics& r : fit.runs) {
+    const auto it = std::find_if(c.runs.begin(), c.runs.end(),
+                                 [&](const CaptiveRun& x) { return x.name == r.run; });
+    ASSERT_NE(it, c.runs.end()) << r.run;
+    const bool straight = it->motion.kind == MotionKind::kStaticDrift && it->motion.beta == 0.0;
+    std::printf("%-16s RMS residual / RMS measured:", r.run.c_str());
+    for (int ch = 0; ch < 3; ++ch) {
+      const double reference = straight && ch > 0 ? largest[ch] : r.rms_measured[ch];
+      const double ratio = r.rms_residual[ch] / reference;
+      std::printf("  %c %.3g/%.3g = %.3f", "XYN"[ch], r.rms_residual[ch], reference, ratio);
+      EXPECT_LT(ratio, kResidualBound) << r.run << " " << "XYN"[ch];
+    }
+    std::printf("\n");
+  }
+  // PMM against static drift (printed): the in-phase part of the pure sway
+  // first harmonic against the static drift regression.
+  for (const ClassicalEstimate& e : AnalyseCampaign(c, p.name).estimates) {
+    if (e.name == "Y_v" || e.name == "N_v" || e.name == "N_vdot" || e.name == "Y_rdot" ||
+        e.name == "N_r")
+      std::printf("classical %-6s = %+.4f (%s)\n", e.name.c_str(), e.value, e.source.c_str());
   }
   const double k = 2 * 0.0625 / 1.0, cb = 4.0 / 9.0, b_l = 0.1;
   struct Expected {

@@ -66,7 +66,7 @@ TEST(WigleyQuickChain, CaptiveIdentifySimulateCommandsChainOnTheWigleyShip) {
          "  static_drift_deg: [0, 4, 8, 12]\n"
          "  pure_sway_v_prime: [0.1, 0.2]\n"
          "  pure_yaw_r_prime: [0.1, 0.2]\n"
-         "  omega_prime: 3.0\n"
+         "  omega_prime: 1.2\n"
          "sampling: {samples_per_period: 100, periods: 2, ramp_periods: 2}\n";
   }
   const auto captive = testing::RunCommand(Kelvin() + " captive " + (dir / "campaign.yaml").string() +
