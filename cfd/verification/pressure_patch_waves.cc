@@ -19,8 +19,8 @@ void RequirePositive(const char* what, double v, const char* name) {
   }
 }
 
-// Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre
-// recurrence), for the vertical integral of the thin-ship sources.
+}  // namespace
+
 void GaussLegendre(int n, std::vector<double>& x, std::vector<double>& w) {
   x.assign(n, 0.0);
   w.assign(n, 0.0);
@@ -42,8 +42,6 @@ void GaussLegendre(int n, std::vector<double>& x, std::vector<double>& w) {
     w[i] = 2.0 / ((1.0 - t * t) * dp * dp);
   }
 }
-
-}  // namespace
 
 SteadyWaveField::SteadyWaveField(const char* what, const WaveBoxOptions& box, double depth, double finest_length,
                                  const Forcing& forcing)

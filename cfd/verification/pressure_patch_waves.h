@@ -40,6 +40,10 @@
 
 namespace kelvin::cfd {
 
+// Gauss-Legendre nodes and weights of n points on [-1, 1] (Newton on the
+// Legendre recurrence; exact for polynomials of degree 2n - 1).
+void GaussLegendre(int n, std::vector<double>& nodes, std::vector<double>& weights);
+
 // The periodic grid the waves are computed on.
 struct WaveBoxOptions {
   double g = 9.81;               // m/s^2

@@ -18,6 +18,23 @@ namespace {
 
 constexpr double kG = 9.81;
 
+// Wavelength on y = 0 between x = from and to, from the mean spacing of the
+// zero crossings (linear interpolation between nodes); 0 with fewer than
+// `min_crossings`.
+double CentrelineWavelength(const SteadyWaveField& waves, double from, double to, double step,
+                            std::size_t min_crossings) {
+  std::vector<double> crossings;
+  double last_x = 0.0, last_eta = 0.0;
+  for (double x = from; x <= to; x += step) {
+    const double eta = waves.Elevation(x, 0.0);
+    if (x > from && eta * last_eta < 0.0) crossings.push_back(last_x + (x - last_x) * last_eta / (last_eta - eta));
+    last_x = x;
+    last_eta = eta;
+  }
+  if (crossings.size() < min_crossings) return 0.0;
+  return 2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+}
+
 PressurePatchWaveOptions Patch(double speed, double depth) {
   PressurePatchWaveOptions o;
   o.g = kG;
@@ -72,16 +89,8 @@ TEST(PressurePatchWaves, TransverseWavelengthAndRadiationCondition) {
   for (int it = 0; it < 200; ++it) k = k0 * std::tanh(k * h);
   const double expected = 2.0 * std::numbers::pi / k;
   // Zero crossings between 6 and 12 wavelengths behind, on y = 0.
-  std::vector<double> crossings;
-  double last_x = 0.0, last_eta = 0.0;
-  for (double x = 6.0; x <= 12.0; x += o.spacing) {
-    const double eta = waves.Elevation(x, 0.0);
-    if (x > 6.0 && eta * last_eta < 0.0) crossings.push_back(last_x + (x - last_x) * last_eta / (last_eta - eta));
-    last_x = x;
-    last_eta = eta;
-  }
-  ASSERT_GE(crossings.size(), 8u);
-  const double measured = 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  const double measured = CentrelineWavelength(waves, 6.0, 12.0, o.spacing, 8);
+  ASSERT_GT(measured, 0.0) << "fewer than 8 crossings";
   // Linear interpolation of crossings on a 16-point-per-wavelength grid: the
   // error is O(spacing^2 / lambda^2) of the crossing position, well under 1%.
   EXPECT_NEAR(measured / expected, 1.0, 0.01) << "measured " << measured << " m, dispersion " << expected << " m";
@@ -141,28 +150,8 @@ TEST(ThinShipWaves, RigidLidLimitAtCreepingSpeed) {
   o.box_width = 24.0;
   o.damping_length = 6.0;
   const ThinShipWaves waves(o);
-  // Gauss-Legendre on [-1, 1], 64 points (by the recurrence, as in the class).
-  auto gauss = [](int n, std::vector<double>& x, std::vector<double>& w) {
-    x.assign(n, 0.0);
-    w.assign(n, 0.0);
-    for (int i = 0; i < n; ++i) {
-      double t = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 0.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = t;
-        for (int m = 2; m <= n; ++m) {
-          const double p2 = ((2.0 * m - 1.0) * t * p1 - (m - 1.0) * p0) / m;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = n * (t * p1 - p0) / (t * t - 1.0);
-        t -= p1 / dp;
-      }
-      x[i] = t;
-      w[i] = 2.0 / ((1.0 - t * t) * dp * dp);
-    }
-  };
   std::vector<double> gx, gw;
-  gauss(64, gx, gw);
+  GaussLegendre(64, gx, gw);
   auto rigid_lid = [&](double x, double y) {
     double sum = 0.0;  // integral of f_x (x - xi) / R^3 over the centreplane
     for (std::size_t a = 0; a < gx.size(); ++a) {
@@ -210,17 +199,9 @@ TEST(ThinShipWaves, TransverseWavelengthBehindAndCalmAhead) {
   o.box_width = 120.0;
   const ThinShipWaves waves(o);
   const double lambda = 2.0 * std::numbers::pi * o.speed * o.speed / kG;
-  std::vector<double> crossings;
-  double last_x = 0.0, last_eta = 0.0;
   const double from = 0.5 * o.length + 4.0 * lambda, to = from + 6.0 * lambda;
-  for (double x = from; x <= to; x += o.spacing) {
-    const double eta = waves.Elevation(x, 0.0);
-    if (x > from && eta * last_eta < 0.0) crossings.push_back(last_x + (x - last_x) * last_eta / (last_eta - eta));
-    last_x = x;
-    last_eta = eta;
-  }
-  ASSERT_GE(crossings.size(), 6u);
-  const double measured = 2.0 * (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  const double measured = CentrelineWavelength(waves, from, to, o.spacing, 6);
+  ASSERT_GT(measured, 0.0) << "fewer than 6 crossings";
   double behind = 0.0, ahead = 0.0;
   for (double x = from; x <= to; x += o.spacing) behind = std::max(behind, std::abs(waves.Elevation(x, 0.0)));
   for (double x = -0.5 * o.length - lambda; x >= -0.5 * o.length - 4.0 * lambda; x -= o.spacing) {
@@ -231,6 +212,22 @@ TEST(ThinShipWaves, TransverseWavelengthBehindAndCalmAhead) {
               measured, lambda, ahead / behind);
   EXPECT_NEAR(measured / lambda, 1.0, 0.01);
   EXPECT_LT(ahead, 0.1 * behind);
+}
+
+// The quadrature of the thin-ship sources: n points integrate x^(2n - 2)
+// exactly (2 / (2n - 1) on [-1, 1]) and the weights sum to 2.
+TEST(GaussLegendre, ExactForPolynomialsOfDegree2nMinus1) {
+  for (int n : {1, 4, 32}) {
+    std::vector<double> x, w;
+    GaussLegendre(n, x, w);
+    double sum = 0.0, moment = 0.0;
+    for (int i = 0; i < n; ++i) {
+      sum += w[i];
+      moment += w[i] * std::pow(x[i], 2 * n - 2);
+    }
+    EXPECT_NEAR(sum, 2.0, 1e-13) << n;
+    EXPECT_NEAR(moment, 2.0 / (2 * n - 1), 1e-13) << n;
+  }
 }
 
 std::string Message(const PressurePatchWaveOptions& o) {
