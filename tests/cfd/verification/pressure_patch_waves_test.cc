@@ -138,13 +138,19 @@ TEST(PressurePatchWaves, TransverseWavelengthAndRadiationCondition) {
 // phi_x with phi = -(1/(2 pi)) integral m / R (source and image), m = 2 U
 // df/dx. That integral by Gauss quadrature, at points off the hull, checks
 // the source density, its transform and the shift to midship.
-TEST(ThinShipWaves, RigidLidLimitAtCreepingSpeed) {
+// The 6 m Wigley of the resistance cases (L/B 10, B/T 1.6) at Froude number fn.
+ThinShipWaveOptions Wigley(double fn) {
   ThinShipWaveOptions o;
   o.length = 6.0;
   o.beam = 0.6;
   o.draft = 0.375;
+  o.speed = fn * std::sqrt(kG * o.length);
+  return o;
+}
+
+TEST(ThinShipWaves, RigidLidLimitAtCreepingSpeed) {
+  ThinShipWaveOptions o = Wigley(0.005);
   o.centre_x = 1.0;
-  o.speed = 0.005 * std::sqrt(kG * o.length);
   o.spacing = 0.04;
   o.box_length = 60.0;
   o.box_width = 24.0;
@@ -188,11 +194,7 @@ TEST(ThinShipWaves, RigidLidLimitAtCreepingSpeed) {
 // the waves that wrapped around the periodic box (measured: 4% of the waves
 // behind in this 400 x 120 m box, 9% in a 200 x 60 m one).
 TEST(ThinShipWaves, TransverseWavelengthBehindAndCalmAhead) {
-  ThinShipWaveOptions o;
-  o.length = 6.0;
-  o.beam = 0.6;
-  o.draft = 0.375;
-  o.speed = 0.316 * std::sqrt(kG * o.length);
+  ThinShipWaveOptions o = Wigley(0.316);
   o.spacing = 0.1;
   o.cutoff_wavelength = 0.4;
   o.box_length = 400.0;
