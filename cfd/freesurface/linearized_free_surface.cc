@@ -206,7 +206,10 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
     // linear upwind).
     auto unlimited = [&](std::size_t e, int u, int d, double q_out_of_u) {
       if (!second_order || !surface_.valid_gradient(u)) return 0.0;
-      const double q_at_u = -options_.mesh_velocity(surface_.centres()[u], t).dot(edges[e].normal);
+      // The advection velocity at u, as a flux out of u across the edge (the
+      // edge normal points out of edge.face, into its neighbour).
+      const double out_of_u = u == edges[e].face ? 1.0 : -1.0;
+      const double q_at_u = -out_of_u * options_.mesh_velocity(surface_.centres()[u], t).dot(edges[e].normal);
       if (q_at_u * q_out_of_u <= 0.0) return 0.0;
       const double lud = grad_[u].dot(edges[e].centre - surface_.centres()[u]);
       if (!quick || d < 0) return lud;

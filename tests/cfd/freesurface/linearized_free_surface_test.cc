@@ -296,6 +296,67 @@ TEST(LinearizedFreeSurface, AdvectionMovesTheCentroidAtTheMeshSpeed) {
   }
 }
 
+// The discretization has no preferred direction: a hump advected toward +x
+// and its mirror image advected toward -x stay mirror images, and the
+// high-order schemes keep more of the peak than first-order upwinding in
+// both directions. (Before 2026-11-22 the high-order correction was dropped
+// on every edge whose upwind face is the edge's neighbour, i.e. for advection
+// against the edge orientation: hull cases, whose stream runs toward -x,
+// were first order everywhere and lost their waves within a wavelength.)
+TEST(LinearizedFreeSurface, AdvectionIsTheSameInBothDirections) {
+  const Mesh mesh = Box({80, 4, 1}, false, Vector3(0, 0, -0.1), Vector3(8, 0.4, 0));
+  const int top = mesh.FindPatch("zmax");
+  const Patch& patch = mesh.patches()[top];
+  constexpr double kU = 0.7, kDt = 0.1;  // Courant number 0.7
+  using Advection = LinearizedFreeSurfaceOptions::Advection;
+  // eta after 30 steps of pure advection at mesh velocity (sign * kU, 0)
+  // from a hump at x0.
+  auto advect = [&](Advection scheme, double sign, double x0) {
+    LinearizedFreeSurfaceOptions o;
+    o.mesh_velocity = [sign](const Vector3&, double) { return Vector3(sign * kU, 0.0, 0.0); };
+    o.advection = scheme;
+    LinearizedFreeSurface bc(mesh, top, o);
+    std::vector<double> eta(patch.size);
+    for (int i = 0; i < patch.size; ++i) eta[i] = std::exp(-std::pow((bc.surface().centres()[i].x() - x0) / 0.3, 2));
+    bc.SetEta(eta);
+    const std::vector<double> zero(mesh.n_faces(), 0.0);
+    bc.Update(BcContext{mesh, patch, 0.0, zero}, {});
+    for (int step = 1; step <= 30; ++step) {
+      const BcContext ctx{mesh, patch, step * kDt, zero};
+      bc.Update(ctx, {});
+      for (int it = 0; it < 40; ++it) {
+        bc.PreparePressureSolve(ctx, PressureCoupling{kDt, false, zero, zero});
+        bc.CorrectAfterFlux(ctx, zero);
+      }
+    }
+    std::vector<std::pair<double, double>> out;  // (x, eta), y-averaged by sorting
+    for (int i = 0; i < patch.size; ++i) out.emplace_back(bc.surface().centres()[i].x(), bc.eta()[i]);
+    return out;
+  };
+  auto peak = [](const std::vector<std::pair<double, double>>& f) {
+    double m = 0.0;
+    for (const auto& [x, e] : f) m = std::max(m, e);
+    return m;
+  };
+  const double first_order = peak(advect(Advection::kUpwind, -1.0, 2.0));
+  for (Advection scheme : {Advection::kLinearUpwind, Advection::kQuick}) {
+    const auto forward = advect(scheme, -1.0, 2.0);   // pattern moves toward +x
+    const auto backward = advect(scheme, +1.0, 6.0);  // the mirror image, toward -x
+    double worst = 0.0;
+    for (const auto& [x, e] : forward) {
+      double mirrored = std::nan("");
+      for (const auto& [xb, eb] : backward) {
+        if (std::abs(xb - (8.0 - x)) < 1e-9) mirrored = eb;
+      }
+      worst = std::max(worst, std::abs(e - mirrored));
+    }
+    std::printf("scheme %d: peak %.4f toward +x, %.4f toward -x (first-order upwind %.4f); mirror mismatch %.2e\n",
+                static_cast<int>(scheme), peak(forward), peak(backward), first_order, worst);
+    EXPECT_LT(worst, 1e-12);
+    EXPECT_GT(peak(backward), first_order + 0.05);
+  }
+}
+
 TEST(LinearizedFreeSurface, BeachRampsToItsMaximumAtTheChosenSides) {
   const Mesh mesh = Box({50, 10, 1}, false, Vector3(0, 0, -1), Vector3(10, 2, 0));
   constexpr double kU = 1.25, kG = 9.81;
