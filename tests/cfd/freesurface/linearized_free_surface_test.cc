@@ -250,6 +250,24 @@ TEST(LinearizedFreeSurface, RobinCoefficientsAndConsistentElevationUpdate) {
 // upwinding stays inside). Conservative upwinding moves the centroid by exactly
 // U dt per step and keeps the volume; the first-order scheme keeps eta >= 0;
 // the lagged parts converge over repeated corrector calls.
+// Pure advection of the elevation of `bc` (no flux through the surface):
+// `steps` steps of dt, each with 40 lagged corrector passes; `after_step`
+// runs after each step.
+template <typename F>
+void AdvectEta(LinearizedFreeSurface& bc, const Mesh& mesh, const Patch& patch, double dt, int steps, F&& after_step) {
+  const std::vector<double> zero(mesh.n_faces(), 0.0);
+  bc.Update(BcContext{mesh, patch, 0.0, zero}, {});
+  for (int step = 1; step <= steps; ++step) {
+    const BcContext ctx{mesh, patch, step * dt, zero};
+    bc.Update(ctx, {});
+    for (int it = 0; it < 40; ++it) {
+      bc.PreparePressureSolve(ctx, PressureCoupling{dt, false, zero, zero});
+      bc.CorrectAfterFlux(ctx, zero);
+    }
+    after_step();
+  }
+}
+
 TEST(LinearizedFreeSurface, AdvectionMovesTheCentroidAtTheMeshSpeed) {
   const Mesh mesh = Box({80, 4, 1}, false, Vector3(0, 0, -0.1), Vector3(8, 0.4, 0));
   const int top = mesh.FindPatch("zmax");
@@ -274,19 +292,11 @@ TEST(LinearizedFreeSurface, AdvectionMovesTheCentroidAtTheMeshSpeed) {
       return std::pair{m, mx / m};
     };
     const auto [m0, x0] = centroid();
-    const std::vector<double> zero(mesh.n_faces(), 0.0);
     const double dt = 0.05;  // Courant number 0.35
-    bc.Update(BcContext{mesh, patch, 0.0, zero}, {});
     double min_eta = 0.0;
-    for (int step = 1; step <= 20; ++step) {
-      const BcContext ctx{mesh, patch, step * dt, zero};
-      bc.Update(ctx, {});
-      for (int it = 0; it < 40; ++it) {
-        bc.PreparePressureSolve(ctx, PressureCoupling{dt, false, zero, zero});
-        bc.CorrectAfterFlux(ctx, zero);
-      }
+    AdvectEta(bc, mesh, patch, dt, 20, [&] {
       for (double e : bc.eta()) min_eta = std::min(min_eta, e);
-    }
+    });
     const auto [m1, x1] = centroid();
     EXPECT_NEAR(m1, m0, 1e-12 * m0);
     EXPECT_NEAR(x1 - x0, kU * 20 * dt, 1e-9);
@@ -319,16 +329,7 @@ TEST(LinearizedFreeSurface, AdvectionIsTheSameInBothDirections) {
     std::vector<double> eta(patch.size);
     for (int i = 0; i < patch.size; ++i) eta[i] = std::exp(-std::pow((bc.surface().centres()[i].x() - x0) / 0.3, 2));
     bc.SetEta(eta);
-    const std::vector<double> zero(mesh.n_faces(), 0.0);
-    bc.Update(BcContext{mesh, patch, 0.0, zero}, {});
-    for (int step = 1; step <= 30; ++step) {
-      const BcContext ctx{mesh, patch, step * kDt, zero};
-      bc.Update(ctx, {});
-      for (int it = 0; it < 40; ++it) {
-        bc.PreparePressureSolve(ctx, PressureCoupling{kDt, false, zero, zero});
-        bc.CorrectAfterFlux(ctx, zero);
-      }
-    }
+    AdvectEta(bc, mesh, patch, kDt, 30, [] {});
     std::vector<std::pair<double, double>> out;  // (x, eta), y-averaged by sorting
     for (int i = 0; i < patch.size; ++i) out.emplace_back(bc.surface().centres()[i].x(), bc.eta()[i]);
     return out;
