@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 
+#include "cfd/motion/ship_forces.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 
@@ -141,24 +142,6 @@ Vector3 WaterlineForce(const PatchSurface& surface, std::span<const double> eta,
     f += 0.5 * rho * g * h * h * e.normal;
   }
   return f;
-}
-
-PatchFaceForces ComputePatchFaceForces(const PimpleSolver& s, int patch_index, double rho, double nu) {
-  const Mesh& mesh = s.mesh();
-  const Patch& patch = mesh.patches()[patch_index];
-  const int ni = mesh.n_internal_faces();
-  const auto& bc = s.U().bc(patch_index);
-  PatchFaceForces out;
-  out.pressure.resize(patch.size);
-  out.viscous.resize(patch.size);
-  for (int i = 0; i < patch.size; ++i) {
-    const int f = patch.start + i;
-    out.pressure[i] = rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
-    const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) + bc.gradient_boundary()[i];
-    const double nu_f = s.turbulence() ? s.FaceViscosity(f) : nu;
-    out.viscous[i] = -rho * nu_f * sn_grad * mesh.face_area_magnitudes()[f];
-  }
-  return out;
 }
 
 ResistanceMonitor::ResistanceMonitor(const PimpleSolver& solver, ResistanceOptions options)

@@ -95,17 +95,6 @@ WaveProfile HullWaveProfile(const PatchSurface& surface, std::span<const double>
 Vector3 WaterlineForce(const PatchSurface& surface, std::span<const double> eta, int hull_patch, double rho,
                        double g);
 
-// Force of the water on each face of a mesh patch (N, mesh axes) at the
-// solver's present state: pressure rho p_f S_f (S_f points out of the water,
-// into the body) and viscous -rho nu_f dU/dn |S_f| (nu_f with the wall
-// function's eddy viscosity under a turbulence model, else nu). Their sums
-// are the patch forces of the run history; per face they give the
-// distribution of the resistance over the hull (resistance.h5 hull_faces).
-struct PatchFaceForces {
-  std::vector<Vector3> pressure, viscous;
-};
-PatchFaceForces ComputePatchFaceForces(const PimpleSolver& solver, int patch, double rho, double nu);
-
 // What the `resistance:` section of a case file asks for.
 struct ResistanceOptions {
   std::string hull_patch = "hull";

@@ -2,31 +2,42 @@
 
 namespace kelvin::cfd {
 
+PatchFaceForces ComputePatchFaceForces(const PimpleSolver& s, int patch_index, double rho, double nu) {
+  const Mesh& mesh = s.mesh();
+  const Patch& patch = mesh.patches()[patch_index];
+  const int ni = mesh.n_internal_faces();
+  const auto& bc = s.U().bc(patch_index);
+  PatchFaceForces out;
+  out.pressure.resize(patch.size);
+  out.viscous.resize(patch.size);
+  for (int i = 0; i < patch.size; ++i) {
+    const int f = patch.start + i;
+    // S_f points out of the water, into the body: the pressure pushes along
+    // it; the wall shear stress on the body is -mu dU/dn_out.
+    out.pressure[i] = rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
+    const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) + bc.gradient_boundary()[i];
+    // With a turbulence model the face carries nu + nu_t,wall (wall functions).
+    const double nu_f = s.turbulence() ? s.FaceViscosity(f) : nu;
+    out.viscous[i] = -rho * nu_f * sn_grad * mesh.face_area_magnitudes()[f];
+  }
+  return out;
+}
+
 HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, double rho,
                            double nu, const Pose& pose, const Vector3& centre_body) {
   const Mesh& mesh = s.mesh();
-  const int ni = mesh.n_internal_faces();
   const Eigen::Matrix3d R = pose.Rotation();
   const Vector3 centre = R * centre_body + pose.Translation(centre_body);
   Vector3 fp = Vector3::Zero(), fv = Vector3::Zero(), mp = Vector3::Zero(), mv = Vector3::Zero();
   for (int patch_index : patches) {
     const Patch& patch = mesh.patches()[patch_index];
-    const auto& bc = s.U().bc(patch_index);
+    const PatchFaceForces ff = ComputePatchFaceForces(s, patch_index, rho, nu);
     for (int i = 0; i < patch.size; ++i) {
-      const int f = patch.start + i;
-      // S_f points out of the water, into the body: the pressure pushes along
-      // it; the wall shear stress on the body is -mu dU/dn_out.
-      const Vector3 dp = rho * s.p().boundary()[f - ni] * mesh.face_areas()[f];
-      const Vector3 sn_grad = bc.gradient_internal()[i].cwiseProduct(s.U()[mesh.owner()[f]]) +
-                              bc.gradient_boundary()[i];
-      // With a turbulence model the face carries nu + nu_t,wall (wall functions).
-      const double nu_f = s.turbulence() ? s.FaceViscosity(f) : nu;
-      const Vector3 dv = -rho * nu_f * sn_grad * mesh.face_area_magnitudes()[f];
-      const Vector3 arm = mesh.face_centres()[f] - centre;
-      fp += dp;
-      fv += dv;
-      mp += arm.cross(dp);
-      mv += arm.cross(dv);
+      const Vector3 arm = mesh.face_centres()[patch.start + i] - centre;
+      fp += ff.pressure[i];
+      fv += ff.viscous[i];
+      mp += arm.cross(ff.pressure[i]);
+      mv += arm.cross(ff.viscous[i]);
     }
   }
   // Earth (z up) -> grid axes (x forward, y port, z up) -> ship axes

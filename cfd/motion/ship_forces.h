@@ -27,6 +27,18 @@ struct HullLoads {
   }
 };
 
+// Force of the water on each face of a mesh patch (N, mesh axes) at the
+// solver's present state: pressure rho p_f S_f (S_f points out of the water,
+// into the body) and viscous -rho nu_f dU/dn |S_f| (nu_f with the wall
+// function's eddy viscosity under a turbulence model, else nu). Their sums
+// are the patch forces of the run history; per face they give the
+// distribution of the resistance over the hull (resistance.h5 hull_faces) and,
+// summed with their arms, the hull loads below.
+struct PatchFaceForces {
+  std::vector<Vector3> pressure, viscous;
+};
+PatchFaceForces ComputePatchFaceForces(const PimpleSolver& solver, int patch, double rho, double nu);
+
 // Loads on the patches `patches` (mesh patch indices) at the solver's present
 // state, with the mesh placed at `pose`. p is kinematic, so forces are times
 // rho; nu is the kinematic viscosity of the wall shear stress.

@@ -31,7 +31,7 @@
 #include <cstdlib>
 #include <numbers>
 
-#include "cfd/verification/pressure_patch_waves.h"
+#include "cfd/verification/steady_waves.h"
 #include "tests/cfd/freesurface/free_surface_test_support.h"
 
 namespace kelvin::cfd {

@@ -1,4 +1,4 @@
-#include "cfd/verification/pressure_patch_waves.h"
+#include "cfd/verification/steady_waves.h"
 
 #include <fmt/format.h>
 
@@ -166,33 +166,38 @@ double CheckHull(const ThinShipWaveOptions& o) {
   return 0.1 * o.length;
 }
 
+// The thin ship's forcing S(a, b, k), with the Gauss-Legendre nodes of the
+// vertical integral computed once.
+std::function<std::complex<double>(double, double, double)> ThinShipForcing(const ThinShipWaveOptions& o) {
+  std::vector<double> xq, wq;
+  GaussLegendre(32, xq, wq);
+  return [&o, xq, wq](double a, double, double k) -> std::complex<double> {
+    // x: integral over the hull of df/dx e^{-i a x} = 2 i B e^{-i a x_c}
+    // (sin s - s cos s) / s^2 with s = a L / 2 (series near s = 0).
+    const double s = 0.5 * a * o.length;
+    const double shape = std::abs(s) < 1e-4 ? s / 3.0 : (std::sin(s) - s * std::cos(s)) / (s * s);
+    const std::complex<double> x_part =
+        std::complex<double>(0.0, 2.0 * o.beam * shape) * std::exp(std::complex<double>(0.0, -a * o.centre_x));
+    // z: integral over [-T, 0] of (1 - (z/T)^2) e^{k z}.
+    double z_part = 0.0;
+    for (std::size_t q = 0; q < xq.size(); ++q) {
+      const double z = -0.5 * o.draft * (xq[q] + 1.0);
+      z_part += 0.5 * o.draft * wq[q] * (1.0 - (z / o.draft) * (z / o.draft)) * std::exp(k * z);
+    }
+    // m = 2 U df/dx; S = i a U M^, low-pass filtered.
+    double filter = 1.0;
+    if (o.cutoff_wavelength > 0.0) {
+      const double r = k * o.cutoff_wavelength / (2.0 * std::numbers::pi);
+      filter = std::exp(-r * r * r * r);
+    }
+    return std::complex<double>(0.0, a * o.speed) * 2.0 * o.speed * x_part * z_part * filter;
+  };
+}
+
 }  // namespace
 
 ThinShipWaves::ThinShipWaves(const ThinShipWaveOptions& o)
     : SteadyWaveField("thin ship waves", o, std::numeric_limits<double>::infinity(), CheckHull(o),
-                      [&o](double a, double, double k) -> std::complex<double> {
-                        // x: integral over the hull of df/dx e^{-i a x} = 2 i B e^{-i a x_c}
-                        // (sin s - s cos s) / s^2 with s = a L / 2 (series near s = 0).
-                        const double s = 0.5 * a * o.length;
-                        const double shape = std::abs(s) < 1e-4 ? s / 3.0 : (std::sin(s) - s * std::cos(s)) / (s * s);
-                        const std::complex<double> x_part =
-                            std::complex<double>(0.0, 2.0 * o.beam * shape) *
-                            std::exp(std::complex<double>(0.0, -a * o.centre_x));
-                        // z: integral over [-T, 0] of (1 - (z/T)^2) e^{k z}.
-                        static thread_local std::vector<double> xq, wq;
-                        if (xq.empty()) GaussLegendre(32, xq, wq);
-                        double z_part = 0.0;
-                        for (std::size_t q = 0; q < xq.size(); ++q) {
-                          const double z = -0.5 * o.draft * (xq[q] + 1.0);
-                          z_part += 0.5 * o.draft * wq[q] * (1.0 - (z / o.draft) * (z / o.draft)) * std::exp(k * z);
-                        }
-                        // m = 2 U df/dx; S = i a U M^, low-pass filtered.
-                        double filter = 1.0;
-                        if (o.cutoff_wavelength > 0.0) {
-                          const double r = k * o.cutoff_wavelength / (2.0 * std::numbers::pi);
-                          filter = std::exp(-r * r * r * r);
-                        }
-                        return std::complex<double>(0.0, a * o.speed) * 2.0 * o.speed * x_part * z_part * filter;
-                      }) {}
+                      ThinShipForcing(o)) {}
 
 }  // namespace kelvin::cfd

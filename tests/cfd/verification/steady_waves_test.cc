@@ -1,8 +1,8 @@
 // The exact linear steady waves of a moving Gaussian pressure patch
-// (cfd/verification/pressure_patch_waves.h), checked against the limits the
+// (cfd/verification/steady_waves.h), checked against the limits the
 // Fourier solution must reproduce before it can serve as the reference of
 // the Kelvin-pattern validation.
-#include "cfd/verification/pressure_patch_waves.h"
+#include "cfd/verification/steady_waves.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
