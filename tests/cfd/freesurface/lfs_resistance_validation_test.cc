@@ -18,12 +18,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "data/schema/h5_file.h"
-#include "tests/test_utilities/test_utilities.h"
+#include "tests/cfd/freesurface/resistance_cases.h"
 
 namespace kelvin {
 namespace {
@@ -32,58 +30,14 @@ namespace fs = std::filesystem;
 
 class LfsResistance : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    const char* keep = std::getenv("KELVIN_LFS_RESISTANCE_KEEP");
-    if (keep && *keep) {
-      root_ = fs::path(keep);
-      fs::create_directories(root_);
-    } else {
-      tmp_ = new testing::ScopedTempDir();
-      root_ = tmp_->path();
-    }
-  }
+  static void SetUpTestSuite() { cases_ = new testing::ResistanceCases("KELVIN_LFS_RESISTANCE_KEEP"); }
   static void TearDownTestSuite() {
-    delete tmp_;
-    tmp_ = nullptr;
+    delete cases_;
+    cases_ = nullptr;
   }
-
-  static fs::path Cases() { return testing::SourceDir() / "data" / "cases" / "resistance"; }
-  static std::string Kelvin() { return (testing::ToolsDir() / "kelvin").string(); }
-
-  // Builds a grid once (kelvin mesh ... -o root/grids/<name>).
-  static fs::path Grid(const std::string& mesh_case, const std::string& name) {
-    const fs::path dir = root_ / "grids" / name;
-    if (!fs::exists(dir / "constant" / "polyMesh" / "owner")) {
-      const auto r = testing::RunCommand(Kelvin() + " mesh " + (Cases() / mesh_case).string() + " -o " +
-                                         dir.string());
-      EXPECT_EQ(r.exit_code, 0) << r.output;
-    }
-    return dir;
-  }
-
-  // Runs a case once with the grid and double-body paths redirected into
-  // root; returns the resistance.h5 of the run.
+  static fs::path Grid(const std::string& mesh_case, const std::string& name) { return cases_->Grid(mesh_case, name); }
   static fs::path Run(const std::string& name, const fs::path& grid, const std::string& grid_name) {
-    const fs::path out = root_ / "results" / name;
-    const fs::path h5 = out / "resistance.h5";
-    if (fs::exists(h5)) return h5;
-    std::ifstream in(Cases() / (name + ".yaml"));
-    std::stringstream ss;
-    ss << in.rdbuf();
-    std::string text = ss.str();
-    auto replace = [&](const std::string& from, const std::string& to) {
-      for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
-        text.replace(at, from.size(), to);
-      }
-    };
-    replace("../../../build/grids/" + grid_name, grid.string());
-    replace("../../../results/", (root_ / "results").string() + "/");
-    fs::create_directories(out);
-    const fs::path file = out / (name + ".yaml");
-    std::ofstream(file) << text;
-    const auto r = testing::RunCommand(Kelvin() + " run " + file.string() + " -o " + out.string() + " --no-progress");
-    EXPECT_EQ(r.exit_code, 0) << r.output.substr(r.output.size() > 4000 ? r.output.size() - 4000 : 0);
-    return h5;
+    return cases_->Run(name, grid, grid_name);
   }
 
   static double Value(const fs::path& h5, const std::string& name) { return data::H5Reader(h5).Read(name).at(0); }
@@ -101,8 +55,7 @@ class LfsResistance : public ::testing::Test {
     EXPECT_NEAR(ct / ct_exp, 1.0, 0.05) << "Wigley C_T at Fn " << fn;
   }
 
-  static inline testing::ScopedTempDir* tmp_ = nullptr;
-  static inline fs::path root_;
+  static inline testing::ResistanceCases* cases_ = nullptr;
 };
 
 TEST_F(LfsResistance, WigleyFn0250WithinFivePercentOfExperiment) { Wigley("wigley_fn0250", 0.250, 3.340e-3); }
