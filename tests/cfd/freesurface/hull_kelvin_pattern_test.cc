@@ -65,8 +65,9 @@ struct PatternMeasures {
   bool upstream_one_sign = true;  // track ahead of the bow: no zero crossing
 };
 
-// `track` is the half-width of the band of faces taken as the track
-// (y = 0 lies on face edges of the full-domain grid: one face row each side).
+// `track` is the half-width of the band of faces taken as the track (y = 0
+// lies on face edges of the full-domain grid: the band holds the one face
+// row on each side).
 PatternMeasures Measure(const Surface& s, const std::vector<double>& eta, double lambda, double track) {
   PatternMeasures m;
   const std::size_t n = s.x.size();
@@ -168,7 +169,8 @@ TEST(HullKelvinPattern, WigleyFn0316WavelengthWedgeAndNoUpstreamWaves) {
   s.damping = r.Read("surface/damping").values;
   s.eta = r.Read("surface/eta").values;
   ASSERT_EQ(s.eta.size(), s.x.size());
-  // The track band: half the narrowest face row at y = 0.
+  // The track band: the face rows next to y = 0 behind the stern, whose
+  // centres lie at half their width from it (|y| < that width).
   double track = 1e300;
   for (std::size_t i = 0; i < s.x.size(); ++i) {
     if (s.x[i] < 0.0) track = std::min(track, 2.0 * std::abs(s.y[i]));
