@@ -1,12 +1,16 @@
 // Helpers of the free-surface tests: a box of water under a linearized free
-// surface (zmax) with slip walls, and Prony's fit of a sampled damped
-// oscillation.
+// surface (zmax) with slip walls, Prony's fit of a sampled damped
+// oscillation, and the angular spread of a steady Kelvin pattern.
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <memory>
+#include <numbers>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "cfd/freesurface/linearized_free_surface.h"
@@ -89,6 +93,41 @@ inline std::complex<double> PronyRoot(const std::vector<double>& x, std::size_t 
   const std::complex<double> disc = std::sqrt(std::complex<double>(c[0] * c[0] + 4.0 * c[1], 0.0));
   const std::complex<double> g = 0.5 * (c[0] + disc);
   return g.imag() >= 0.0 ? g : std::conj(g);
+}
+
+// The angular spread of a steady wave pattern (the Kelvin wedge), by the
+// distribution of wave energy eta^2 dA over the angle from the track as seen
+// from the disturbance: face i lies along[i] downstream of it and across[i]
+// to the side. Only faces between r_min and r_max from it and outside the
+// beaches (damping 0) count.
+struct WedgeSpread {
+  double angle95 = 0.0;          // deg, the angle holding 95% of the energy
+  double beyond_wedge = 0.0;     // fraction of the energy beyond 19.47 deg
+  double beyond_wedge_10 = 0.0;  // ... beyond 29.47 deg
+};
+
+inline WedgeSpread MeasureWedgeSpread(const std::vector<double>& along, const std::vector<double>& across,
+                                      std::span<const double> area, std::span<const double> damping,
+                                      std::span<const double> eta, double r_min, double r_max) {
+  std::vector<std::pair<double, double>> energy;  // (angle deg, eta^2 dA)
+  double total = 0.0;
+  for (std::size_t i = 0; i < along.size(); ++i) {
+    const double r = std::hypot(along[i], across[i]);
+    if (r < r_min || r > r_max || damping[i] > 0.0) continue;
+    energy.emplace_back(std::atan2(std::abs(across[i]), along[i]) * 180.0 / std::numbers::pi,
+                        eta[i] * eta[i] * area[i]);
+    total += energy.back().second;
+  }
+  std::sort(energy.begin(), energy.end());
+  WedgeSpread w;
+  double sum = 0.0;
+  for (const auto& [angle, e] : energy) {
+    sum += e;
+    if (sum < 0.95 * total) w.angle95 = angle;
+    if (angle > 19.47) w.beyond_wedge += e / total;
+    if (angle > 29.47) w.beyond_wedge_10 += e / total;
+  }
+  return w;
 }
 
 }  // namespace kelvin::cfd::testing

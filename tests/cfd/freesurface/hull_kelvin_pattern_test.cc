@@ -36,6 +36,7 @@
 
 #include "cfd/verification/steady_waves.h"
 #include "data/schema/h5_file.h"
+#include "tests/cfd/freesurface/free_surface_test_support.h"
 #include "tests/cfd/freesurface/resistance_cases.h"
 
 namespace kelvin::cfd {
@@ -120,23 +121,15 @@ PatternMeasures Measure(const Surface& s, const std::vector<double>& eta, double
     if (s.x[i] > kLength + 0.25 * lambda) m.max_upstream = std::max(m.max_upstream, std::abs(eta[i]));
   }
   // The wedge, seen from the bow.
+  std::vector<double> along(n);
+  for (std::size_t i = 0; i < n; ++i) along[i] = kLength - s.x[i];
   for (int band = 0; band < 2; ++band) {
-    const double r0 = (band == 0 ? 1.5 : 2.0) * lambda;
-    std::vector<std::pair<double, double>> energy;  // (angle deg, eta^2 dA)
-    double total = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double dx = kLength - s.x[i], r = std::hypot(dx, s.y[i]);
-      if (r < r0 || r > 2.75 * lambda || s.damping[i] > 0.0) continue;
-      energy.emplace_back(std::atan2(std::abs(s.y[i]), dx) * 180.0 / kPi, eta[i] * eta[i] * s.area[i]);
-      total += energy.back().second;
-    }
-    std::sort(energy.begin(), energy.end());
-    double sum = 0.0;
-    for (const auto& [angle, e] : energy) {
-      sum += e;
-      if (sum < 0.95 * total) m.angle95[band] = angle;
-      if (band == 0 && angle > 19.47) m.beyond_wedge += e / total;
-      if (band == 0 && angle > 29.47) m.beyond_wedge_10 += e / total;
+    const testing::WedgeSpread w = testing::MeasureWedgeSpread(along, s.y, s.area, s.damping, eta,
+                                                      (band == 0 ? 1.5 : 2.0) * lambda, 2.75 * lambda);
+    m.angle95[band] = w.angle95;
+    if (band == 0) {
+      m.beyond_wedge = w.beyond_wedge;
+      m.beyond_wedge_10 = w.beyond_wedge_10;
     }
   }
   return m;
@@ -153,7 +146,7 @@ void Print(const PatternMeasures& m, double lambda, const char* what) {
 }
 
 TEST(HullKelvinPattern, WigleyFn0316WavelengthWedgeAndNoUpstreamWaves) {
-  const testing::ResistanceCases cases("KELVIN_HULL_PATTERN_KEEP");
+  const kelvin::testing::ResistanceCases cases("KELVIN_HULL_PATTERN_KEEP");
   const fs::path grid = cases.Grid("wigley_pattern_mesh.yaml", "wigley_pattern");
   const fs::path h5 = cases.Run("wigley_pattern_fn0316", grid, "wigley_pattern");
   ASSERT_TRUE(fs::exists(h5));

@@ -116,24 +116,18 @@ PatternMeasures Measure(const LinearizedFreeSurface& fs, const std::vector<doubl
   // 19.47 deg; this close to the patch the caustic on the cusp line is an Airy
   // function whose tail still reaches a few degrees beyond the line, and
   // narrows with distance: the exact solution has the same spread.
+  std::vector<double> along(x.size()), across(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    along[i] = x[i].x();
+    across[i] = x[i].y();
+  }
   for (int band = 0; band < 2; ++band) {
-    const double r0 = band == 0 ? 1.5 * kLambda : 2.0 * kLambda;
-    std::vector<std::pair<double, double>> energy;  // (angle deg, eta^2 dA)
-    double total = 0.0;
-    for (int i = 0; i < fs.surface().size(); ++i) {
-      const double r = x[i].head<2>().norm();
-      if (r < r0 || r > 2.75 * kLambda || fs.damping()[i] > 0.0) continue;
-      energy.emplace_back(std::atan2(x[i].y(), x[i].x()) * 180.0 / kPi,
-                          eta[i] * eta[i] * fs.surface().areas()[i]);
-      total += energy.back().second;
-    }
-    std::sort(energy.begin(), energy.end());
-    double sum = 0.0;
-    for (const auto& [angle, e] : energy) {
-      sum += e;
-      if (sum < 0.95 * total) m.angle95[band] = angle;
-      if (band == 0 && angle > 19.47) m.beyond_wedge += e / total;
-      if (band == 0 && angle > 29.47) m.beyond_wedge_10 += e / total;
+    const testing::WedgeSpread w = testing::MeasureWedgeSpread(
+        along, across, fs.surface().areas(), fs.damping(), eta, (band == 0 ? 1.5 : 2.0) * kLambda, 2.75 * kLambda);
+    m.angle95[band] = w.angle95;
+    if (band == 0) {
+      m.beyond_wedge = w.beyond_wedge;
+      m.beyond_wedge_10 = w.beyond_wedge_10;
     }
   }
   return m;
