@@ -7,7 +7,10 @@ Runs (unless --report-only) the resistance cases of data/cases/resistance with
   Wigley (6 m model): double body, then the linearized free surface at
   Fn = 0.25, 0.316, 0.408; DTC (1:59.407) at 1.668 m/s: double body, the
   linearized free surface at maximum Courant number about 100 (dtc_lfs) and
-  the same run at about 10 (dtc_lfs_cfl10).
+  the same run at about 10 (dtc_lfs_cfl10); the same speed on the finer 53k-cell
+  grid of dtc_fine_mesh.yaml, double body and free surface (cell-limited
+  gradients). The grids are expected under --grids (kelvin mesh of
+  wigley_mesh.yaml, dtc_mesh.yaml and dtc_fine_mesh.yaml).
 Then reads each run's resistance.h5 and history.h5 and writes the section
 `lfs_resistance` of BENCHMARKS.md:
   - Wigley C_T against the experimental values of the Bai & McCarthy (1979)
@@ -50,7 +53,9 @@ WIGLEY_EXP = {"wigley_fn0250": (0.250, 3.340e-3), "wigley_fn0316": (0.316, 3.620
 DTC_RT_EXP = 31.83
 PEER_US_PER_CELL_ITER = 3.1  # OpenFOAM simpleFoam SST double body, peers README
 ORDER = ["wigley_double_body", "wigley_fn0250", "wigley_fn0316", "wigley_fn0408", "dtc_double_body", "dtc_lfs",
-         "dtc_lfs_cfl10"]
+         "dtc_lfs_cfl10", "dtc_fine_double_body", "dtc_fine_lfs"]
+# Grid (kelvin mesh output under build/grids) of each case.
+GRIDS = {"wigley": "wigley_lfs", "dtc_fine": "dtc_fine", "dtc": "dtc_lfs"}
 
 
 def n_cells(poly_mesh):
@@ -106,7 +111,7 @@ def read(name, results, grids):
     off = np.abs(rt - final) > 1e-3 * abs(final)
     settled = int(np.nonzero(off)[0][-1]) + 1 if off.any() else 0
     settled = min(settled, len(rt) - 1)
-    grid = "wigley_lfs" if name.startswith("wigley") else "dtc_lfs"
+    grid = next(g for prefix, g in GRIDS.items() if name.startswith(prefix))
     cells = n_cells(os.path.join(grids, grid, "constant", "polyMesh"))
     d.update(cells=cells, steps=len(cpu), outer=int(outer.sum()), cpu=float(cpu[-1]),
              cpu_settled=float(cpu[settled]), co_max=float(co[len(co) // 2:].max()),
@@ -137,6 +142,54 @@ def michell_cw(fn, length=6.0, beam=0.6, draft=0.375, wetted_area=5.3565, g=9.81
     iz = (fz[None, :] * np.exp(k0 * lam[:, None] ** 2 * z[None, :]) * wz).sum(axis=1)
     r_over_rho = 4.0 * g * g / (math.pi * u * u) * np.trapz(np.abs(ix * iz) ** 2 * lam ** 2, t)
     return r_over_rho / (0.5 * u * u * wetted_area)
+
+
+def ittc57(re):
+    return 0.075 / (math.log10(re) - 2.0) ** 2
+
+
+def implied_wave_table(by, nu=1.14e-6, g=9.81, lengths=(2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 20.0)):
+    """What the quoted Wigley C_T leave for waves at other model lengths.
+
+    For a model of length L at the quoted Fn, Re = Fn sqrt(g L) L / nu; the
+    viscous part is (C_V / C_F0) C_F0(Re), with the ratio C_V / C_F0 from
+    kelvin's own double body (grid and speed of the Fn 0.316 run). The rest,
+    C_T,exp - C_V, is the wave part the quoted value leaves; it is shown as a
+    fraction of Michell's C_W, beside the fraction kelvin computes. The length
+    at which the two agree is found by bisection (None if not below 100 m)."""
+    db = by.get("wigley_double_body")
+    ref = by.get("wigley_fn0316")
+    if not db or not ref or math.isnan(ref["Re"]):
+        return []
+    form = db["C_T"] / ittc57(ref["Re"])
+    lines = ["\n### What the quoted C_T leave for the waves, by model length\n",
+             f"Viscous part (C_V / C_F0) C_F0(Re) with C_V / C_F0 = {form:.3f} from kelvin's double body; wave "
+             "part left = C_T,exp - C_V, as a fraction of Michell's C_W. The quoted compilation's model lengths "
+             "and Reynolds numbers were not found; the runs above assume 6 m.\n",
+             "| Fn | kelvin C_W / Michell | " + " | ".join(f"L = {L:g} m" for L in lengths) +
+             " | L where the quoted C_T leaves kelvin's C_W | 6 m, no form effect (C_V = C_F0) | "
+             "6 m, 1 + k = 1.12 |",
+             "| --- | --- | " + " | ".join("---" for _ in lengths) + " | --- | --- | --- |"]
+
+    def left(fn, ct, length, k=form):
+        re = fn * math.sqrt(g * length) * length / nu
+        return (ct - k * ittc57(re)) / michell_cw(fn)
+
+    for name, (fn, ct) in WIGLEY_EXP.items():
+        r = by.get(name)
+        if not r or math.isnan(r["C_W"]):
+            continue
+        target = r["C_W"] / michell_cw(fn)
+        lo, hi = 1.0, 100.0
+        found = left(fn, ct, hi) >= target
+        if found:
+            for _ in range(60):
+                mid = math.sqrt(lo * hi)
+                lo, hi = (mid, hi) if left(fn, ct, mid) < target else (lo, mid)
+        cells = " | ".join(f"{left(fn, ct, L):.2f}" for L in lengths)
+        lines.append(f"| {fn} | {target:.2f} | {cells} | {f'{hi:.0f} m' if found else 'beyond 100 m'} | "
+                     f"{left(fn, ct, 6.0, 1.0):.2f} | {left(fn, ct, 6.0, 1.12):.2f} |")
+    return lines
 
 
 def fmt(x, spec):
@@ -172,14 +225,15 @@ def section(rows, failed=None):
     if db:
         lines.append(f"\nDouble body (Fn 0.316 speed): C_T {db['C_T']:.4e}, C_F {db['C_F']:.4e}, "
                      f"C_P {db['C_P']:.4e}.\n")
+    lines.extend(implied_wave_table(by))
     lines.append("\n### DTC at 1.668 m/s (model 1:59.407, fixed at the design waterline)\n")
     lines.append("| run | max Courant | R_T (N) | R_T / measured 31.83 N | R_F (N) | R_P (N) | C_T | C_W | "
                  "converged | steps |")
     lines.append("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
-    dtc_db = by.get("dtc_double_body")
-    for name in ("dtc_double_body", "dtc_lfs", "dtc_lfs_cfl10"):
+    for name in ("dtc_double_body", "dtc_lfs", "dtc_lfs_cfl10", "dtc_fine_double_body", "dtc_fine_lfs"):
         r = by.get(name)
-        if r and name != "dtc_double_body" and math.isnan(r["C_W"]) and dtc_db:
+        dtc_db = by.get("dtc_fine_double_body" if name.startswith("dtc_fine") else "dtc_double_body")
+        if r and "double_body" not in name and math.isnan(r["C_W"]) and dtc_db:
             r["C_W"] = r["C_P"] - dtc_db["C_P"]  # C_W = C_P - C_P(double body), same grid and speed
         if not r:
             lines.append(f"| {name} | {failed.get(name, 'not run')} | | | | | | | | |")

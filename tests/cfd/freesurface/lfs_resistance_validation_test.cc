@@ -6,13 +6,22 @@
 //   quotes them: 3.340e-3, 3.620e-3, 4.090e-3. The model length, Reynolds
 //   number and water temperature of those experiments could not be
 //   retrieved with the project's search; the 6 m model in fresh water at
-//   15 C (Re 1.0e7 to 1.6e7) is our assumption, chosen so that the ITTC-57
-//   friction line plus a plausible wave part is consistent with the values;
+//   15 C (Re 1.0e7 to 1.6e7) is our assumption. These three checks fail:
+//   kelvin's C_T is 16-29% high, and the section lfs_resistance of
+//   BENCHMARKS.md shows that on a model of a few metres the quoted values
+//   leave only 0.2-0.4 of Michell's thin-ship wave resistance for the waves;
 // - DTC (1:59.407) at 1.668 m/s: the run at maximum Courant number >= 100
 //   converges (steady criterion met) and its R_T differs by < 0.5% from the
 //   same run at Courant about 10. R_T is printed against the measured
 //   31.83 N (el Moctar, Shigunov & Zorn 2012, Ship Technology Research
 //   59(3), Table 4); the issue asks for the comparison, not a tolerance.
+// - DTC on the finer 53k-cell grid (dtc_fine_mesh.yaml, 7 prism layers,
+//   boundary non-orthogonality up to 56 deg at the bow waterline): the
+//   free-surface run converges at Courant >= 100, and no crest rises above
+//   the stagnation head U^2 / (2 g) (Bernoulli: p = rho g eta cannot exceed
+//   the stagnation pressure of the inflow). Before the cell-limited
+//   gradient (`limiter: cell` in the case) it diverged about 9 s of
+//   pseudo-time after the rigid-lid release at any Courant number.
 // Set KELVIN_LFS_RESISTANCE_KEEP=dir to keep the results.
 #include <gtest/gtest.h>
 
@@ -84,6 +93,27 @@ TEST_F(LfsResistance, DtcConvergesAtCourant100AndMatchesCourant10) {
   EXPECT_EQ(Value(big, "converged"), 1.0);
   EXPECT_EQ(Value(small, "converged"), 1.0);
   EXPECT_LT(std::abs(rt_big - rt_small) / rt_small, 0.005);
+}
+
+TEST_F(LfsResistance, DtcFineGridConvergesWithCrestsBelowStagnationHead) {
+  const fs::path grid = Grid("dtc_fine_mesh.yaml", "dtc_fine");
+  const fs::path db = Run("dtc_fine_double_body", grid, "dtc_fine");
+  const fs::path lfs = Run("dtc_fine_lfs", grid, "dtc_fine");
+  ASSERT_TRUE(fs::exists(db) && fs::exists(lfs));
+  const data::Series co = data::H5Reader(lfs.parent_path() / "history.h5").Read("courant");
+  double co_max = 0.0;
+  for (std::size_t r = co.rows / 2; r < co.rows; ++r) co_max = std::max(co_max, co.values[r]);
+  const double speed = Value(lfs, "speed");
+  const double head = speed * speed / (2.0 * 9.81);
+  const double eta_max = Value(lfs, "eta_max"), eta_min = Value(lfs, "eta_min");
+  std::printf("DTC fine grid: Courant %.0f, R_T %.4f N (R_F %.4f, R_P %.4f), double body R_T %.4f N "
+              "(R_P %.4f); measured 31.83 N: ratio %.3f; eta %.4f to %.4f m, stagnation head %.4f m\n",
+              co_max, Value(lfs, "R_T"), Value(lfs, "R_F"), Value(lfs, "R_P"), Value(db, "R_T"), Value(db, "R_P"),
+              Value(lfs, "R_T") / 31.83, eta_min, eta_max, head);
+  EXPECT_EQ(Value(db, "converged"), 1.0);
+  EXPECT_EQ(Value(lfs, "converged"), 1.0);
+  EXPECT_GE(co_max, 100.0);
+  EXPECT_LT(eta_max, head);
 }
 
 }  // namespace
