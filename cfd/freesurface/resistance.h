@@ -157,6 +157,8 @@ class ResistanceMonitor {
   int hull_patch() const { return hull_; }
   double speed() const { return speed_; }
   double wetted_area() const { return area_; }
+  // Unit inflow direction: the resistance is the hull force along it.
+  const Vector3& direction() const { return direction_; }
 
  private:
   const LinearizedFreeSurface* FreeSurface(const PimpleSolver& solver) const;

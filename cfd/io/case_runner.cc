@@ -58,6 +58,14 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     resistance = LoadResistance(root["resistance"], solver, root["physics"], case_file.parent_path());
     resistance->Start(solver, !options.restart.empty(), restored);
   }
+  // Scales of the per-step resistance coefficients in history.h5:
+  // output.resistance, or else those of the resistance section.
+  ResistanceReference coefficients = c.resistance;
+  if (!coefficients.enabled() && resistance) {
+    coefficients.speed = resistance->speed();
+    coefficients.direction = resistance->direction();
+    coefficients.area = resistance->wetted_area();
+  }
 
   std::vector<std::vector<double>> history;  // rows: time, Co, resU, resp, continuity, forces...
   std::vector<CaptiveSample> captive_rows;      // ship-axis loads (motion with output.captive)
@@ -148,7 +156,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
         for (std::size_t r = 0; r < n; ++r) v[r] = resistance_rows[r][j];
         w.WriteArray(names[j], v, {n}, "1", what[j]);
       }
-      w.WriteArray("resistance/reference", std::vector<double>{c.resistance.speed, c.resistance.area, c.rho}, {3},
+      w.WriteArray("resistance/reference", std::vector<double>{coefficients.speed, coefficients.area, c.rho}, {3},
                    "m/s, m^2, kg/m^3", "reference speed U, area S and density rho of the coefficients");
     }
     if (c.steady.enabled()) {
@@ -236,6 +244,15 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     if (resistance) {
       const auto [fp, fv] = PatchForce(solver, resistance->hull_patch(), c.rho, nu);
       converged = resistance->Record(solver, fp, fv);
+      if (!c.resistance.enabled()) {
+        // The same per-step coefficients as output.resistance, from the hull
+        // force along the inflow, so that kelvin gci reads either kind of run.
+        const double q = 0.5 * c.rho * coefficients.speed * coefficients.speed * coefficients.area;
+        const double cp = fp.dot(coefficients.direction) / q, cf = fv.dot(coefficients.direction) / q;
+        resistance_rows.push_back({cp + cf, cf, cp});
+      }
+      // The steady criterion of the resistance section is this run's steady state.
+      if (converged) summary.steady_converged = true;
     }
     if (c.motion && c.captive_length > 0.0) {
       captive_rows.push_back(MakeCaptiveSample(solver, *c.motion, force_patch_index, c.rho, nu,
@@ -285,7 +302,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
               : fmt::format("\n  steady: NOT settled by time.end (range {:.3g} of |F| over {} steps, tolerance {:.3g})",
                             summary.steady_change, c.steady.window, c.steady.tolerance);
     }
-    if (!resistance_rows.empty()) {
+    if (c.resistance.enabled() && !resistance_rows.empty()) {
       const auto& r = resistance_rows.back();
       summary.message += fmt::format("\n  resistance: C_T {:.5e} = C_F {:.5e} + C_P {:.5e} (U {:.4g} m/s, S {:.5g} m^2)",
                                      r[0], r[1], r[2], c.resistance.speed, c.resistance.area);

@@ -31,8 +31,9 @@ struct RunSummary {
   std::filesystem::path last_checkpoint;
   double wall_seconds = 0.0;
   int outer_iterations = 0;
-  // time.steady: the force settled before time.end (steady_change is the
-  // relative force range over the window at the last step).
+  // The run reached its steady state before time.end: time.steady (the force
+  // settled; steady_change is the relative force range over the window at
+  // the last step) or the criterion of the resistance section.
   bool steady_converged = false;
   double steady_change = 0.0;
 };

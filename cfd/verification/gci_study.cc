@@ -196,7 +196,7 @@ double ExtractOutput(const fs::path& history, const std::string& name, int avera
     }
     throw DataFileError(fmt::format(
         "{}: no output '{}' (dataset '{}'); this run offers {} or any per-step dataset as name or name:column "
-        "(C_T/C_F/C_P need output.resistance in the case, X/Y/N output.captive)",
+        "(C_T/C_F/C_P need output.resistance or a resistance section in the case, X/Y/N output.captive)",
         history.string(), name, dataset, offered.empty() ? std::string("none of the short names") : fmt::format("{}", fmt::join(offered, ", "))));
   }
   const data::Series s = h5.Read(dataset);
@@ -246,7 +246,8 @@ GciStudy RunGciStudy(const GciStudyOptions& options) {
   if (!root["mesh"].Has("poly_mesh")) {
     root["mesh"].Fail("a poly_mesh entry (kelvin gci replaces it by each grid of the family)");
   }
-  const bool steady = root["time"].Has("steady");
+  // Steady runs stop on time.steady or on the resistance section's criterion.
+  const bool steady = root["time"].Has("steady") || root.Has("resistance");
   fs::path runs = options.runs;
   if (runs.empty()) {
     fs::path out = root["output"].Get<std::string>("directory", "results");
@@ -291,7 +292,7 @@ GciStudy RunGciStudy(const GciStudyOptions& options) {
       spdlog::info("kelvin gci: grid {}: {}", r.level, s.message);
     }
     if (r.steady && !r.steady_converged) {
-      spdlog::warn("kelvin gci: grid {}: the force had not settled by time.end (time.steady); its values carry "
+      spdlog::warn("kelvin gci: grid {}: the run had not met its steady criterion by time.end; its values carry "
                    "an iteration error",
                    r.level);
     }
@@ -348,7 +349,7 @@ void WriteGciReport(const GciStudy& study, const fs::path& stem, const std::stri
   w.WriteArray("grids/steps", steps, {n}, "1", "time steps of the run");
   w.WriteArray("grids/outer_iterations", iters, {n}, "1", "PIMPLE outer iterations of the run");
   w.WriteArray("grids/cpu_time", cpu, {n}, "s", "process CPU time of the time loop");
-  w.WriteArray("grids/steady_converged", settled, {n}, "1", "1 when the force settled (time.steady)");
+  w.WriteArray("grids/steady_converged", settled, {n}, "1", "1 when the run met its steady criterion (time.steady or the resistance section)");
   for (const GciOutputResult& o : study.outputs) {
     const std::string g = "outputs/" + o.name;
     std::vector<double> values;

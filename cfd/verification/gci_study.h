@@ -72,8 +72,8 @@ struct GridRunRecord {
   int steps = 0;
   int outer_iterations = 0;
   double cpu_seconds = 0.0;      // process CPU time of the time loop
-  bool steady_converged = false; // time.steady met (false also when not asked)
-  bool steady = false;           // the case has time.steady
+  bool steady_converged = false; // the steady criterion met (false also when not asked)
+  bool steady = false;           // the case has time.steady or a resistance section
   std::vector<double> values;    // one per output
 };
 

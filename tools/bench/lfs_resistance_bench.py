@@ -199,7 +199,7 @@ def fmt(x, spec):
 def section(rows, failed=None):
     by = {r["name"]: r for r in rows}
     failed = failed or {}
-    lines = [f"## LFS hull resistance (issue #6, acceptance 4 and 5)\n",
+    lines = ["## LFS hull resistance (issue #6, acceptance 4 and 5)\n",
              f"Written by `tools/bench/lfs_resistance_bench.py` on {datetime.date.today()}; "
              "k-omega SST with wall functions, linearized free surface on `freeSurface`, relaxed PIMPLE "
              "(U 0.7, p 0.3, final corrector U 0.7; k/omega 0.7; outer correctors as in each case file) from rest, the "

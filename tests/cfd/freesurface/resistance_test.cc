@@ -226,6 +226,16 @@ TEST(ResistanceCase, WritesCoefficientsConsistentWithItsForcesAndStops) {
   // on the obstacle, x component, with the sign turned.
   const data::Series fp = data::H5Reader(run.output_directory / "history.h5").Read("forces/obstacle/pressure");
   EXPECT_NEAR(h.Read("R_P").at(0), -fp.at(fp.rows - 1, 0), 1e-12 * std::abs(fp.at(fp.rows - 1, 0)));
+  // The history carries the same coefficients per step (what kelvin gci
+  // reads), the last step equal to resistance.h5, and the run reports the
+  // criterion as its steady state.
+  const data::H5Reader history(run.output_directory / "history.h5");
+  const data::Series ct = history.Read("resistance/C_T"), cp = history.Read("resistance/C_P");
+  ASSERT_EQ(ct.rows, fp.rows);
+  EXPECT_NEAR(ct.at(ct.rows - 1), h.Read("C_T").at(0), 1e-12 * std::abs(h.Read("C_T").at(0)));
+  EXPECT_NEAR(cp.at(cp.rows - 1), h.Read("C_P").at(0), 1e-12 * std::abs(h.Read("C_T").at(0)));
+  EXPECT_NEAR(history.Read("resistance/reference").at(1), S, 1e-12);
+  EXPECT_TRUE(run.steady_converged);
   // The run stopped on the criterion before time.end, after at least one
   // window (one flow-through: 6 m at 1 m/s).
   EXPECT_EQ(h.Read("converged").at(0), 1.0) << run.message;
