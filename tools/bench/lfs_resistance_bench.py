@@ -26,8 +26,14 @@ Then reads each run's resistance.h5 and history.h5 and writes the section
     per SIMPLE iteration on this machine) and against kelvin's own
     double-body run on the same grid.
 
+With --family-runs DIR it also reports the DTC on the three-grid snappyHexMesh
+family (free surface and double body, run beforehand by kelvin gci):
+  kelvin mesh data/cases/mesh/dtc_snappy.yaml --family 3 -o build/grids/doublebody_dtc
+  kelvin gci data/cases/resistance/dtc_fine_lfs.yaml --family 3 --grids build/grids/doublebody_dtc
+      --outputs C_T,C_F,C_P --runs DIR/dtc_fine_lfs          (and the same for dtc_fine_double_body)
+
 Usage: tools/bench/lfs_resistance_bench.py --kelvin build/ci/tools/kelvin [--report-only] [--write]
-       [--cases wigley_fn0316,dtc_lfs] [--results results]
+       [--cases wigley_fn0316,dtc_lfs] [--results results] [--family-runs DIR]
 """
 import argparse
 import datetime
@@ -192,11 +198,60 @@ def implied_wave_table(by, nu=1.14e-6, g=9.81, lengths=(2.0, 3.0, 4.0, 6.0, 8.0,
     return lines
 
 
+def family_section(runs):
+    """DTC at 1.668 m/s on the three snappyHexMesh grids of data/cases/mesh/dtc_snappy.yaml --family 3: the
+    free-surface case dtc_fine_lfs.yaml and its double body dtc_fine_double_body.yaml run by `kelvin gci` (reports
+    <runs>/<case>/gci.h5). Returns the lines of the subsection, or [] when the reports are missing."""
+    reports = {name: os.path.join(runs, name, "gci.h5") for name in ("dtc_fine_lfs", "dtc_fine_double_body")}
+    if not all(os.path.isfile(f) for f in reports.values()):
+        return []
+    data = {}
+    for name, path in reports.items():
+        with h5py.File(path, "r") as f:
+            d = {"cells": f["grids/cells"][:], "steps": f["grids/steps"][:], "cpu": f["grids/cpu_time"][:],
+                 "iters": f["grids/outer_iterations"][:], "settled": f["grids/steady_converged"][:]}
+            for out in ("C_T", "C_F", "C_P"):
+                g = f["outputs/" + out]
+                d[out] = {k: g[k][:] if k == "values" else float(g[k][0])
+                          for k in ("values", "R", "p", "extrapolated", "gci_fine", "gci_coarse", "asymptotic_ratio")}
+                conv = g.attrs["convergence"]
+                d[out]["convergence"] = conv.decode() if isinstance(conv, bytes) else str(conv)
+        data[name] = d
+    q = 0.5 * 998.8 * 1.668 ** 2 * 6.2428  # rho U^2 S / 2 of the cases (N per unit coefficient)
+    lfs, db = data["dtc_fine_lfs"], data["dtc_fine_double_body"]
+    lines = ["\n### DTC on a three-grid family: free surface and double body (`kelvin gci`)\n",
+             "`kelvin mesh data/cases/mesh/dtc_snappy.yaml --family 3` (snappyHexMesh, ratio sqrt 2 in the base "
+             "cells; grid 3 is the grid of `dtc_fine_mesh.yaml` up to 49 cells), then `kelvin gci` with the cases "
+             "`dtc_fine_lfs.yaml` and `dtc_fine_double_body.yaml` (cell-limited gradients). R = C q with "
+             f"q = rho U^2 S / 2 = {q:.1f} N; measured R_T 31.83 N.\n",
+             "| grid | cells | R_T LFS (N) | R_T / 31.83 | R_F LFS (N) | R_P LFS (N) | R_T double body (N) | "
+             "R_P double body (N) | R_W = R_P - R_P(db) (N) | steps LFS / db | converged LFS / db | CPU s LFS / db |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for g in range(len(lfs["cells"])):
+        ct, cf, cp = (lfs[o]["values"][g] for o in ("C_T", "C_F", "C_P"))
+        dct, dcp = db["C_T"]["values"][g], db["C_P"]["values"][g]
+        lines.append(f"| {g + 1} | {int(lfs['cells'][g])} | {ct * q:.3f} | {ct * q / DTC_RT_EXP:.3f} | {cf * q:.3f} | "
+                     f"{cp * q:.3f} | {dct * q:.3f} | {dcp * q:.3f} | {(cp - dcp) * q:+.3f} | "
+                     f"{int(lfs['steps'][g])} / {int(db['steps'][g])} | "
+                     f"{'yes' if lfs['settled'][g] else '**no**'} / {'yes' if db['settled'][g] else '**no**'} | "
+                     f"{lfs['cpu'][g]:.0f} / {db['cpu'][g]:.0f} |")
+    lines += ["", "| case | output | R | convergence | p | extrapolated (N) | extrapolated / 31.83 | GCI_fine | "
+                  "GCI_coarse | GCI32 / (r^p GCI21) |",
+              "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for name, d in data.items():
+        for out in ("C_T", "C_F", "C_P"):
+            o = d[out]
+            lines.append(f"| {name} | {out} | {o['R']:.3f} | {o['convergence']} | {o['p']:.2f} | "
+                         f"{o['extrapolated'] * q:.3f} | {o['extrapolated'] * q / DTC_RT_EXP:.3f} | "
+                         f"{100 * o['gci_fine']:.2f}% | {100 * o['gci_coarse']:.2f}% | {o['asymptotic_ratio']:.3f} |")
+    return lines
+
+
 def fmt(x, spec):
     return "n/a" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
 
 
-def section(rows, failed=None):
+def section(rows, failed=None, family_runs=None):
     by = {r["name"]: r for r in rows}
     failed = failed or {}
     lines = ["## LFS hull resistance (issue #6, acceptance 4 and 5)\n",
@@ -246,6 +301,7 @@ def section(rows, failed=None):
         diff = (a["R_T"] - b["R_T"]) / b["R_T"]
         lines.append(f"\nCourant study: R_T at Courant {a['co_max']:.0f} differs from Courant {b['co_max']:.0f} by "
                      f"{100 * diff:+.3f}% (target < 0.5%: {'met' if abs(diff) < 5e-3 else '**missed**'}).\n")
+    lines.extend(family_section(family_runs) if family_runs else [])
     lines.append("\n### Cost\n")
     lines.append("| run | cells | outer iterations | CPU s | us per cell per iteration | ratio to simpleFoam "
                  "peer (3.1 us) | CPU s until R_T within 0.1% of final | CPU s to the stop |")
@@ -278,6 +334,9 @@ def main():
     ap.add_argument("--write", action="store_true", help="write the section into BENCHMARKS.md")
     ap.add_argument("--output", default=os.path.join(ROOT, "BENCHMARKS.md"))
     ap.add_argument("--note", default=None, help="file with measured findings to append to the section")
+    ap.add_argument("--family-runs", default=None,
+                    help="directory of the kelvin gci runs of dtc_fine_lfs and dtc_fine_double_body on the "
+                         "dtc_snappy.yaml family (<dir>/<case>/gci.h5)")
     args = ap.parse_args()
     names = [n for n in args.cases.split(",") if n]
     if not args.report_only:
@@ -285,7 +344,8 @@ def main():
             run_case(args.kelvin, n, args.results)
     rows = [r for r in (read(n, args.results, args.grids) for n in ORDER) if r]
     failed = {n: failure(n, args.results) for n in ORDER}
-    text = section(rows, {n: m for n, m in failed.items() if m and n not in {r["name"] for r in rows}})
+    text = section(rows, {n: m for n, m in failed.items() if m and n not in {r["name"] for r in rows}},
+                   args.family_runs)
     if args.note:
         text += "\n" + open(args.note).read().strip() + "\n"
     print(text)
