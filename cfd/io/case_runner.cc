@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <ctime>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "cfd/freesurface/resistance.h"
@@ -35,6 +37,18 @@ std::pair<Vector3, Vector3> PatchForce(const PimpleSolver& s, int patch_index, d
 }
 
 }  // namespace
+
+CourantOnset CourantGrowthOnset(std::span<const double> courant) {
+  KELVIN_CHECK(!courant.empty(), "a Courant history");
+  std::vector<double> sorted(courant.begin(), courant.end());
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  CourantOnset o;
+  o.median = sorted[sorted.size() / 2];
+  o.step = courant.size() - 1;
+  o.grew = courant.back() > 2.0 * o.median;
+  while (o.grew && o.step > 0 && courant[o.step - 1] > 2.0 * o.median) --o.step;
+  return o;
+}
 
 RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   const ConfigNode root = ConfigNode::LoadFile(case_file);
@@ -114,6 +128,9 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   std::vector<std::array<double, 4>> turbulence_rows;
   // output.resistance: C_T, C_F (viscous), C_P (pressure) per step.
   std::vector<std::array<double, 3>> resistance_rows;
+  // Centre of the cell with the largest Courant number, per step: where a
+  // run that blows up was growing fastest.
+  std::vector<Vector3> courant_locations;
   ForceConvergence steady(c.steady);
   std::vector<std::vector<WallPatchStats>> wall_rows;
   constexpr std::size_t kForceColumn = 9;
@@ -134,6 +151,14 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     w.WriteArray("outer_iterations", column(6), {rows}, "1", "PIMPLE outer iterations of the step");
     w.WriteArray("pressure_iterations", column(7), {rows}, "1", "pressure CG iterations of the step");
     w.WriteArray("cpu_time", column(8), {rows}, "s", "process CPU time since the start of the time loop");
+    if (courant_locations.size() == rows) {
+      std::vector<double> v(rows * 3);
+      for (std::size_t r = 0; r < rows; ++r) {
+        for (int d = 0; d < 3; ++d) v[r * 3 + d] = courant_locations[r][d];
+      }
+      w.WriteArray("courant_location", v, {rows, 3}, "m",
+                   "centre of the cell with the largest Courant number (mesh position at that step)");
+    }
     for (std::size_t k = 0; k < c.force_patches.size(); ++k) {
       std::vector<double> fp(rows * 3), fv(rows * 3);
       for (std::size_t r = 0; r < rows; ++r) {
@@ -209,6 +234,24 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
           "Courant {:.3g}); last good checkpoint: {}",
           s.step, s.time, s.initial_residual_U, s.initial_residual_p, s.courant_max,
           summary.last_checkpoint.empty() ? "none" : summary.last_checkpoint.string());
+      if (!courant_locations.empty()) {
+        // Where the blow-up began: the first of the last run of steps whose
+        // Courant number exceeds twice the median of the run (by the last
+        // finite step the growth has usually spread far from its origin).
+        std::vector<double> co;
+        for (const auto& row : history) co.push_back(row[1]);
+        const auto [onset, grew, median] = CourantGrowthOnset(co);
+        const Vector3& x = courant_locations[onset];
+        const int step = s.step - static_cast<int>(co.size() - onset);
+        summary.message +=
+            grew ? fmt::format("; the largest Courant number rose above twice the run's median ({:.3g}) from step {} "
+                               "on, {:.3g} then, in the cell at ({:.4g}, {:.4g}, {:.4g}) m",
+                               median, step, co[onset], x.x(), x.y(), x.z())
+                 : fmt::format("; the largest Courant number of the last finite step ({}), {:.3g}, was in the cell at "
+                               "({:.4g}, {:.4g}, {:.4g}) m",
+                               step, co[onset], x.x(), x.y(), x.z());
+        summary.message += " (history.h5 courant_location has every step)";
+      }
       break;
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -240,6 +283,8 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       summary.steady_change = steady.change();
     }
     history.push_back(std::move(row));
+    courant_locations.push_back(s.courant_cell >= 0 ? mesh.cell_centres()[s.courant_cell]
+                                                    : Vector3::Constant(std::numeric_limits<double>::quiet_NaN()));
     bool converged = false;
     if (resistance) {
       const auto [fp, fv] = PatchForce(solver, resistance->hull_patch(), c.rho, nu);

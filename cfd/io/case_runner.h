@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <string>
 
 #include "cfd/io/case_loader.h"
@@ -39,5 +40,15 @@ struct RunSummary {
 };
 
 RunSummary RunCase(const std::filesystem::path& case_file, const RunOptions& options);
+
+// Where a diverging run began to blow up, from its per-step largest Courant
+// numbers (oldest first): the first of the last run of steps above twice the
+// median (grew), or the last step when the last step is not above it.
+struct CourantOnset {
+  std::size_t step = 0;  // index into the history
+  bool grew = false;
+  double median = 0.0;
+};
+CourantOnset CourantGrowthOnset(std::span<const double> courant);
 
 }  // namespace kelvin::cfd

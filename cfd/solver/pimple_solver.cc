@@ -454,8 +454,13 @@ StepSummary PimpleSolver::Step(double dt) {
     sum_abs[mesh_.owner()[f]] += std::abs(phi_[f] - mesh_flux_[f]);
     if (f < mesh_.n_internal_faces()) sum_abs[mesh_.neighbour()[f]] += std::abs(phi_[f] - mesh_flux_[f]);
   }
+  summary.courant_cell = mesh_.n_cells() > 0 ? 0 : -1;
   for (int c = 0; c < mesh_.n_cells(); ++c) {
-    summary.courant_max = std::max(summary.courant_max, 0.5 * dt * sum_abs[c] / vol[c]);
+    const double co = 0.5 * dt * sum_abs[c] / vol[c];
+    if (co > summary.courant_max) {  // false for NaN: non-finite cells are caught below
+      summary.courant_max = co;
+      summary.courant_cell = c;
+    }
   }
   summary.continuity_error = ContinuityError(&summary.global_mass_imbalance);
   for (int c = 0; c < mesh_.n_cells() && summary.finite; ++c) {

@@ -66,6 +66,7 @@ struct StepSummary {
   int step = 0;
   double time = 0.0;
   double courant_max = 0.0;
+  int courant_cell = -1;  // the cell of courant_max (-1: no cells)
   int outer_iterations = 0;
   bool outer_converged = false;
   double initial_residual_U = 0.0;  // first outer iteration, max over components

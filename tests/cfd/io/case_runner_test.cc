@@ -84,6 +84,16 @@ TEST(CaseRunner, RunWritesFieldsHistoryAndCheckpoint) {
   const data::Series fv = h.Read("forces/ymax/viscous");
   EXPECT_LT(fv.at(9, 0), 0.0);
   EXPECT_EQ(h.Read("residuals/p").units, "1");
+  // Where the largest Courant number sits: in the top row of cells, which the
+  // lid drives (row centre y = 11.5 / 12), every step.
+  const data::Series at = h.Read("courant_location");
+  ASSERT_EQ(at.rows, 10u);
+  ASSERT_EQ(at.cols, 3u);
+  for (std::size_t r = 0; r < at.rows; ++r) {
+    EXPECT_NEAR(at.at(r, 1), 11.5 / 12.0, 1e-12) << "step " << r + 1;
+    EXPECT_GT(at.at(r, 0), 0.0);
+    EXPECT_LT(at.at(r, 0), 1.0);
+  }
 }
 
 TEST(CaseRunner, CliRunAndRestart) {
@@ -116,6 +126,9 @@ TEST(CaseRunner, DivergenceStopsWithAStatusAndKeepsTheLastGoodCheckpoint) {
   const RunSummary s = RunCase(WriteCase(tmp.path(), t), o);
   ASSERT_EQ(s.status, RunSummary::Status::kDiverged) << s.message;
   EXPECT_NE(s.message.find("diverged at step"), std::string::npos) << s.message;
+  // It says where the run was growing fastest before it failed.
+  EXPECT_NE(s.message.find("the largest Courant number"), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("in the cell at ("), std::string::npos) << s.message;
   EXPECT_LT(s.steps, 20);
   ASSERT_GE(s.steps, 2) << s.message;
   ASSERT_TRUE(fs::exists(tmp / "out" / "checkpoint.h5"));
@@ -133,6 +146,24 @@ namespace {
 // time.steady stops a run once the force has settled, and output.resistance
 // writes coefficients that are the force over 1/2 rho U^2 S (S: the patch
 // area by default).
+TEST(CaseRunner, CourantGrowthOnsetFindsTheLastRunAboveTwiceTheMedian) {
+  // Median 1: a first surge that settled (indices 5-6), then the final growth
+  // from index 9 on.
+  const std::vector<double> co = {1, 1, 1, 1, 1, 5, 4, 1, 1, 3, 9, 50};
+  const CourantOnset a = CourantGrowthOnset(co);
+  EXPECT_TRUE(a.grew);
+  EXPECT_EQ(a.step, 9u);
+  EXPECT_DOUBLE_EQ(a.median, 1.0);
+  // No growth at the end: the last step.
+  const std::vector<double> flat = {2, 2, 3, 2};
+  const CourantOnset b = CourantGrowthOnset(flat);
+  EXPECT_FALSE(b.grew);
+  EXPECT_EQ(b.step, 3u);
+  // Growth right up to the end of a short history.
+  const std::vector<double> late = {1, 1, 1, 10, 100};
+  EXPECT_EQ(CourantGrowthOnset(late).step, 3u);
+}
+
 TEST(CaseRunner, SteadyStopAndResistanceCoefficients) {
   kelvin::testing::ScopedTempDir tmp;
   std::string t = CaseText(0.05, 50.0);
