@@ -128,6 +128,11 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   std::vector<std::array<double, 4>> turbulence_rows;
   // output.resistance: C_T, C_F (viscous), C_P (pressure) per step.
   std::vector<std::array<double, 3>> resistance_rows;
+  auto add_coefficients = [&](const Vector3& fp, const Vector3& fv) {
+    const double q = 0.5 * c.rho * coefficients.speed * coefficients.speed * coefficients.area;
+    const double cp = fp.dot(coefficients.direction) / q, cf = fv.dot(coefficients.direction) / q;
+    resistance_rows.push_back({cp + cf, cf, cp});
+  };
   // Centre of the cell with the largest Courant number, per step: where a
   // run that blows up was growing fastest.
   std::vector<Vector3> courant_locations;
@@ -274,11 +279,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
           fv[d] += row[kForceColumn + 6 * k + 3 + d];
         }
       }
-      if (c.resistance.enabled()) {
-        const double q = 0.5 * c.rho * c.resistance.speed * c.resistance.speed * c.resistance.area;
-        const double cp = fp.dot(c.resistance.direction) / q, cf = fv.dot(c.resistance.direction) / q;
-        resistance_rows.push_back({cp + cf, cf, cp});
-      }
+      if (c.resistance.enabled()) add_coefficients(fp, fv);
       if (c.steady.enabled() && steady.Add(fp + fv)) summary.steady_converged = true;
       summary.steady_change = steady.change();
     }
@@ -289,13 +290,9 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
     if (resistance) {
       const auto [fp, fv] = PatchForce(solver, resistance->hull_patch(), c.rho, nu);
       converged = resistance->Record(solver, fp, fv);
-      if (!c.resistance.enabled()) {
-        // The same per-step coefficients as output.resistance, from the hull
-        // force along the inflow, so that kelvin gci reads either kind of run.
-        const double q = 0.5 * c.rho * coefficients.speed * coefficients.speed * coefficients.area;
-        const double cp = fp.dot(coefficients.direction) / q, cf = fv.dot(coefficients.direction) / q;
-        resistance_rows.push_back({cp + cf, cf, cp});
-      }
+      // Without output.resistance: the same per-step coefficients from the hull
+      // force along the inflow, so that kelvin gci reads either kind of run.
+      if (!c.resistance.enabled()) add_coefficients(fp, fv);
       // The steady criterion of the resistance section is this run's steady state.
       if (converged) summary.steady_converged = true;
     }

@@ -46,6 +46,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doublebody_study import ittc57  # noqa: E402
 from pimple_vs_openfoam import replace_section  # noqa: E402
 
 NAME = "lfs_resistance"
@@ -148,10 +149,6 @@ def michell_cw(fn, length=6.0, beam=0.6, draft=0.375, wetted_area=5.3565, g=9.81
     iz = (fz[None, :] * np.exp(k0 * lam[:, None] ** 2 * z[None, :]) * wz).sum(axis=1)
     r_over_rho = 4.0 * g * g / (math.pi * u * u) * np.trapz(np.abs(ix * iz) ** 2 * lam ** 2, t)
     return r_over_rho / (0.5 * u * u * wetted_area)
-
-
-def ittc57(re):
-    return 0.075 / (math.log10(re) - 2.0) ** 2
 
 
 def implied_wave_table(by, nu=1.14e-6, g=9.81, lengths=(2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 20.0)):

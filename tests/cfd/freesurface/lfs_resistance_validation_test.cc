@@ -50,6 +50,13 @@ class LfsResistance : public ::testing::Test {
   }
 
   static double Value(const fs::path& h5, const std::string& name) { return data::H5Reader(h5).Read(name).at(0); }
+  // Largest Courant number over the second half of the run beside resistance.h5.
+  static double MaxCourant(const fs::path& h5) {
+    const data::Series co = data::H5Reader(h5.parent_path() / "history.h5").Read("courant");
+    double m = 0.0;
+    for (std::size_t r = co.rows / 2; r < co.rows; ++r) m = std::max(m, co.values[r]);
+    return m;
+  }
 
   static void Wigley(const std::string& name, double fn, double ct_exp) {
     const fs::path grid = Grid("wigley_mesh.yaml", "wigley_lfs");
@@ -77,13 +84,7 @@ TEST_F(LfsResistance, DtcConvergesAtCourant100AndMatchesCourant10) {
   const fs::path big = Run("dtc_lfs", grid, "dtc_lfs");
   const fs::path small = Run("dtc_lfs_cfl10", grid, "dtc_lfs");
   ASSERT_TRUE(fs::exists(big) && fs::exists(small));
-  auto courant = [](const fs::path& h5) {
-    const data::Series co = data::H5Reader(h5.parent_path() / "history.h5").Read("courant");
-    double m = 0.0;
-    for (std::size_t r = co.rows / 2; r < co.rows; ++r) m = std::max(m, co.values[r]);
-    return m;
-  };
-  const double co_big = courant(big), co_small = courant(small);
+  const double co_big = MaxCourant(big), co_small = MaxCourant(small);
   const double rt_big = Value(big, "R_T"), rt_small = Value(small, "R_T");
   std::printf("DTC: Courant %.0f R_T %.4f N, Courant %.1f R_T %.4f N, difference %+.3f%%; measured 31.83 N: "
               "ratio %.3f\n",
@@ -100,9 +101,7 @@ TEST_F(LfsResistance, DtcFineGridConvergesWithCrestsBelowStagnationHead) {
   const fs::path db = Run("dtc_fine_double_body", grid, "dtc_fine");
   const fs::path lfs = Run("dtc_fine_lfs", grid, "dtc_fine");
   ASSERT_TRUE(fs::exists(db) && fs::exists(lfs));
-  const data::Series co = data::H5Reader(lfs.parent_path() / "history.h5").Read("courant");
-  double co_max = 0.0;
-  for (std::size_t r = co.rows / 2; r < co.rows; ++r) co_max = std::max(co_max, co.values[r]);
+  const double co_max = MaxCourant(lfs);
   const double speed = Value(lfs, "speed");
   const double head = speed * speed / (2.0 * 9.81);
   const double eta_max = Value(lfs, "eta_max"), eta_min = Value(lfs, "eta_min");
