@@ -9,16 +9,14 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
 #include <fstream>
 #include <numbers>
 #include <optional>
 #include <thread>
 
-#include "cfd/io/case_runner.h"
-#include "cfd/io/checkpoint.h"
-#include "cfd/motion/ship_forces.h"
+#include "cfd/run/captive_sampler.h"
+#include "cfd/run/run_driver.h"
 #include "data/report/progress.h"
 #include "data/schema/atomic_file.h"
 #include "data/schema/config.h"
@@ -219,7 +217,7 @@ std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
 
 struct Context {
   const ident::CampaignFile& file;
-  const data::ConfigNode& case_root;
+  const CaseSettings& settings;  // of the campaign's case file
   const ident::CaptiveShip& ship;
   long budget = 0;    // > 0: steps allowed in this call
   long computed = 0;  // steps computed in this call
@@ -228,7 +226,7 @@ struct Context {
 
 std::vector<int> HullPatches(const Context& ctx, const Case& c) {
   std::vector<std::string> names =
-      ctx.file.cfd.hull_patches.empty() ? c.force_patches : ctx.file.cfd.hull_patches;
+      ctx.file.cfd.hull_patches.empty() ? c.settings.output.force_patches : ctx.file.cfd.hull_patches;
   if (names.empty()) {
     throw ConfigError(fmt::format(
         "{}: cfd.hull_patches is empty and the case {} has no output.forces; expected the "
@@ -272,74 +270,104 @@ class RunLock {
   int fd_ = -1;
 };
 
-// Runs (or resumes) one job; false when the step budget ran out first.
+// The run's own files beside the driver's checkpoint: the samples (written
+// before the state, so that a checkpoint never runs ahead of them), the
+// cost so far and the progress file; the progress table after each step.
+class JobFiles final : public Monitor {
+ public:
+  JobFiles(Context& ctx, Job& job, const CaptiveSampler& sampler, RunCost cost)
+      : ctx_(ctx), job_(job), sampler_(sampler), cost_(cost) {}
+  void AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) override {
+    cost_.cpu_seconds += record.step_cpu_seconds;
+    cost_.courant_max = std::max(cost_.courant_max, record.step.courant_max);
+    ++ctx_.computed;
+    job_.step = solver.step();
+    if (ctx_.report) ctx_.report();
+  }
+  void BeforeCheckpoint(const PimpleSolver&) override {
+    WriteSamples(job_.dir / "samples.h5", sampler_.samples(), job_.step, job_.steps, cost_);
+    WriteProgressFile(job_, seconds());
+  }
+  void WriteResult() const {
+    WriteSamples(job_.dir / "result.h5", sampler_.samples(), job_.step, job_.steps, cost_);
+    WriteProgressFile(job_, seconds());
+  }
+
+ private:
+  double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+  Context& ctx_;
+  Job& job_;
+  const CaptiveSampler& sampler_;
+  RunCost cost_;
+  Clock::time_point start_ = Clock::now();
+};
+
+// The samples and cost a resumed run starts from: those of samples.h5 up
+// to the checkpoint's step, or none (and no restart) when the pair does not
+// match (the samples run ahead of a checkpoint that was not written; fewer
+// samples than steps: start again).
+struct Resume {
+  bool restart = false;
+  std::vector<CaptiveSample> samples;
+  RunCost cost;
+};
+
+Resume ReadResume(const Job& job) {
+  const fs::path checkpoint = job.dir / "checkpoint.h5", samples_file = job.dir / "samples.h5";
+  Resume r;
+  if (!fs::exists(checkpoint) || !fs::exists(samples_file)) return r;
+  const auto step = static_cast<std::size_t>(data::H5Reader(checkpoint).NumberAttribute("/", "step"));
+  std::vector<CaptiveSample> samples = ReadSamples(samples_file, RigidMotion(job.cfd_motion));
+  if (samples.size() < step) return r;
+  samples.resize(step);
+  r.restart = true;
+  r.samples = std::move(samples);
+  const data::H5Reader previous(samples_file);
+  if (previous.HasAttribute("/", "cpu_seconds")) {
+    r.cost.cpu_seconds = previous.NumberAttribute("/", "cpu_seconds");
+    r.cost.courant_max = previous.NumberAttribute("/", "courant_max");
+  }
+  return r;
+}
+
+// Runs (or resumes) one job through the run driver; false when the step
+// budget ran out first.
 bool ExecuteJob(Context& ctx, Job& job) {
-  const fs::path case_dir = ctx.file.cfd.case_file.parent_path();
+  if (ctx.budget > 0 && ctx.computed >= ctx.budget) return false;  // as if killed here
   CaseOverrides overrides;
   overrides.motion = job.cfd_motion;
   overrides.dt = job.dt;
   overrides.end_time = job.dt * job.steps;
   fs::create_directories(job.dir);
   const RunLock lock(job);
-  const fs::path checkpoint = job.dir / "checkpoint.h5", samples_file = job.dir / "samples.h5";
-  std::optional<Case> c(LoadCase(ctx.case_root, case_dir, overrides));
-  const std::vector<int> hull = HullPatches(ctx, *c);
-  const double nu = ctx.case_root["physics"].GetPositive("nu");
-  const PrimeScales scales{c->rho, ctx.ship.Lpp,
+  const fs::path checkpoint = job.dir / "checkpoint.h5";
+  Case c = LoadCaseFile(ctx.file.cfd.case_file, overrides);
+  const PrimeScales scales{c.settings.rho, ctx.ship.Lpp,
                            ctx.file.cfd.draft > 0 ? ctx.file.cfd.draft : ctx.ship.d,
                            job.cfd_motion.speed};
-  std::vector<CaptiveSample> samples;
-  RunCost cost;
-  cost.cells = c->mesh->n_cells();
-  if (fs::exists(checkpoint) && fs::exists(samples_file)) {
-    ReadCheckpoint(checkpoint, *c->solver);
-    samples = ReadSamples(samples_file, c->motion->motion());
-    const data::H5Reader previous(samples_file);
-    if (previous.HasAttribute("/", "cpu_seconds")) {
-      cost.cpu_seconds = previous.NumberAttribute("/", "cpu_seconds");
-      cost.courant_max = previous.NumberAttribute("/", "courant_max");
-    }
-    const auto step = static_cast<std::size_t>(c->solver->step());
-    if (samples.size() >= step) {
-      samples.resize(step);  // the samples may run ahead of a checkpoint that was not written
-    } else {
-      samples.clear();  // inconsistent pair: start the run again
-      c.reset();
-      c.emplace(LoadCase(ctx.case_root, case_dir, overrides));
-    }
+  CaptiveSampler sampler(c, HullPatches(ctx, c), scales);
+  Resume resume = ReadResume(job);
+  resume.cost.cells = c.mesh->n_cells();
+  sampler.Restore(std::move(resume.samples));
+  JobFiles files(ctx, job, sampler, resume.cost);
+  Monitor* monitors[] = {&sampler, &files};
+  RunDriverOptions o;
+  o.restart = resume.restart ? checkpoint : fs::path();
+  o.checkpoint = checkpoint;
+  o.checkpoint_interval = ctx.file.cfd.checkpoint_interval;
+  o.checkpoint_at_end = false;
+  o.step_budget = ctx.budget > 0 ? ctx.budget - ctx.computed : 0;
+  o.progress = false;
+  const RunDriverSummary d = RunDriver(c, monitors, o);
+  if (d.status == RunDriverSummary::Status::kDiverged) {
+    throw InputError(fmt::format("run '{}' {}", job.name, d.message));
   }
-  PimpleSolver& solver = *c->solver;
-  job.step = solver.step();
-  const auto start = Clock::now();
-  auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  while (solver.step() < job.steps) {
-    if (ctx.budget > 0 && ctx.computed >= ctx.budget) return false;  // as if killed here
-    const std::clock_t cpu_before = std::clock();
-    const StepSummary s = solver.Step(job.dt);
-    cost.cpu_seconds += static_cast<double>(std::clock() - cpu_before) / CLOCKS_PER_SEC;
-    cost.courant_max = std::max(cost.courant_max, s.courant_max);
-    ++ctx.computed;
-    if (!s.finite) {
-      throw InputError(
-          fmt::format("run '{}' diverged at step {} (t = {:.6g} s, Courant {:.3g}); last good "
-                      "checkpoint: {}",
-                      job.name, s.step, s.time, s.courant_max,
-                      fs::exists(checkpoint) ? checkpoint.string() : "none"));
-    }
-    samples.push_back(MakeCaptiveSample(solver, *c->motion, hull, c->rho, nu, scales));
-    job.step = solver.step();
-    if (job.step % ctx.file.cfd.checkpoint_interval == 0 && job.step < job.steps) {
-      WriteSamples(samples_file, samples, job.step, job.steps, cost);  // samples first, then the state
-      WriteCheckpoint(checkpoint, solver);
-      WriteProgressFile(job, seconds());
-    }
-    if (ctx.report) ctx.report();
-  }
-  WriteSamples(job.dir / "result.h5", samples, job.step, job.steps, cost);
-  WriteProgressFile(job, seconds());
+  if (d.status == RunDriverSummary::Status::kStopped) return false;
+  job.step = c.solver->step();
+  files.WriteResult();
   std::error_code ec;
   fs::remove(checkpoint, ec);
-  fs::remove(samples_file, ec);
+  fs::remove(job.dir / "samples.h5", ec);
   return true;
 }
 
@@ -391,16 +419,16 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
   const ident::CaptiveShip ship = ident::LoadCaptiveShip(f.ship_file);
   if (!(f.speed > 0))
     throw ConfigError(f.path.string() + ": campaign.speed: expected the carriage speed in m/s");
-  const data::ConfigNode case_root = data::ConfigNode::LoadFile(f.cfd.case_file);
-  const double case_rho =
-      case_root["physics"].Has("rho") ? case_root["physics"].GetPositive("rho") : 1000.0;
+  const CaseSettings settings =
+      ReadCaseSettings(data::ConfigNode::LoadFile(f.cfd.case_file), f.cfd.case_file.parent_path());
+  const double case_rho = settings.rho;
   if (std::abs(case_rho - ship.rho) > 1e-9 * ship.rho) {
     throw ConfigError(
         fmt::format("{}: physics.rho = {} differs from the ship's rho = {} ({}); the prime system "
                     "needs one density",
                     f.cfd.case_file.string(), case_rho, ship.rho, f.ship_file.string()));
   }
-  std::vector<Job> jobs = PlanJobs(f, ship, case_root["time"].GetPositive("dt"));
+  std::vector<Job> jobs = PlanJobs(f, ship, settings.time.dt);
   const int n_jobs = options.jobs > 0 ? options.jobs : f.cfd.jobs;
   if (n_jobs > 1 && options.stop_after_steps > 0) {
     throw ArgumentError(
@@ -430,7 +458,7 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
     std::fflush(options.stream);
   };
 
-  Context ctx{f, case_root, ship, options.stop_after_steps, 0, {}};
+  Context ctx{f, settings, ship, options.stop_after_steps, 0, {}};
   if (!options.only_run.empty()) {
     auto it = std::find_if(jobs.begin(), jobs.end(),
                            [&](const Job& j) { return j.name == options.only_run; });
@@ -524,16 +552,7 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
 
   // Every run is done: the campaign file in the captive schema.
   ident::CaptiveCampaign campaign;
-  bool free_surface = false;
-  if (case_root.Has("boundary")) {
-    const data::ConfigNode boundary = case_root["boundary"];
-    for (const std::string& patch : boundary.Keys()) {
-      const data::ConfigNode b = boundary[patch];
-      if (b.Has("p") && b["p"].Has("type") &&
-          b["p"].Get<std::string>("type") == "linearizedFreeSurface")
-        free_surface = true;
-    }
-  }
+  const bool free_surface = settings.free_surface;
   campaign.description = fmt::format(
       "CFD captive campaign '{}' of {}: case {}, {}, hull loads on the moving mesh", f.name,
       ship.name, f.cfd.case_file.filename().string(),

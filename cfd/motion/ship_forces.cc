@@ -1,5 +1,7 @@
 #include "cfd/motion/ship_forces.h"
 
+#include "data/schema/errors.h"
+
 namespace kelvin::cfd {
 
 PatchFaceForces ComputePatchFaceForces(const PimpleSolver& s, int patch_index, double rho, double nu) {
@@ -23,15 +25,16 @@ PatchFaceForces ComputePatchFaceForces(const PimpleSolver& s, int patch_index, d
   return out;
 }
 
-HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, double rho,
-                           double nu, const Pose& pose, const Vector3& centre_body) {
-  const Mesh& mesh = s.mesh();
+HullLoads SumHullLoads(const Mesh& mesh, std::span<const int> patches,
+                       std::span<const PatchFaceForces* const> faces, const Pose& pose,
+                       const Vector3& centre_body) {
+  KELVIN_CHECK(faces.size() == patches.size(), "the face forces of every patch");
   const Eigen::Matrix3d R = pose.Rotation();
   const Vector3 centre = R * centre_body + pose.Translation(centre_body);
   Vector3 fp = Vector3::Zero(), fv = Vector3::Zero(), mp = Vector3::Zero(), mv = Vector3::Zero();
-  for (int patch_index : patches) {
-    const Patch& patch = mesh.patches()[patch_index];
-    const PatchFaceForces ff = ComputePatchFaceForces(s, patch_index, rho, nu);
+  for (std::size_t k = 0; k < patches.size(); ++k) {
+    const Patch& patch = mesh.patches()[patches[k]];
+    const PatchFaceForces& ff = *faces[k];
     for (int i = 0; i < patch.size; ++i) {
       const Vector3 arm = mesh.face_centres()[patch.start + i] - centre;
       fp += ff.pressure[i];
@@ -50,20 +53,18 @@ HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, 
   return {to_ship(fp, mp), to_ship(fv, mv)};
 }
 
+HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, double rho,
+                           double nu, const Pose& pose, const Vector3& centre_body) {
+  std::vector<PatchFaceForces> faces;
+  for (int k : patches) faces.push_back(ComputePatchFaceForces(s, k, rho, nu));
+  std::vector<const PatchFaceForces*> views;
+  for (const PatchFaceForces& f : faces) views.push_back(&f);
+  return SumHullLoads(s.mesh(), patches, views, pose, centre_body);
+}
+
 PlanarLoad PrimeScales::ToPrime(const PlanarLoad& load) const {
   const double force = 0.5 * rho * length * draft * speed * speed;
   return {load.X / force, load.Y / force, load.N / (force * length)};
-}
-
-CaptiveSample MakeCaptiveSample(const PimpleSolver& s, const RigidMeshMotion& motion,
-                                std::span<const int> patches, double rho, double nu,
-                                const PrimeScales& scales) {
-  CaptiveSample r;
-  r.time = s.time();
-  r.pose = motion.motion().At(s.time());
-  r.loads = ComputeHullLoads(s, patches, rho, nu, r.pose, motion.motion().options().centre);
-  r.prime = scales.ToPrime(r.loads.Total());
-  return r;
 }
 
 void WriteCaptiveHistory(data::H5Writer& w, const std::vector<CaptiveSample>& rows) {

@@ -42,6 +42,10 @@ PatchFaceForces ComputePatchFaceForces(const PimpleSolver& solver, int patch, do
 // Loads on the patches `patches` (mesh patch indices) at the solver's present
 // state, with the mesh placed at `pose`. p is kinematic, so forces are times
 // rho; nu is the kinematic viscosity of the wall shear stress.
+// The same from face forces already computed (faces[k] those of patches[k]).
+HullLoads SumHullLoads(const Mesh& mesh, std::span<const int> patches,
+                       std::span<const PatchFaceForces* const> faces, const Pose& pose,
+                       const Vector3& centre_body);
 HullLoads ComputeHullLoads(const PimpleSolver& solver, std::span<const int> patches, double rho,
                            double nu, const Pose& pose, const Vector3& centre_body);
 
@@ -61,10 +65,6 @@ struct CaptiveSample {
   HullLoads loads;
   PlanarLoad prime;
 };
-
-CaptiveSample MakeCaptiveSample(const PimpleSolver& solver, const RigidMeshMotion& motion,
-                                std::span<const int> patches, double rho, double nu,
-                                const PrimeScales& scales);
 
 // Writes the samples as the group `captive` (time, X, Y, N, their pressure
 // and viscous parts, X_prime, Y_prime, N_prime, pose x0, y0, psi and body

@@ -428,6 +428,7 @@ StepSummary PimpleSolver::Step(double dt) {
     }
     summary.outer_iterations = outer + 1;
     if (!std::isfinite(res_U)) summary.finite = false;
+    if (outer_hook_) outer_hook_(outer);
     if (final_outer && turbulence_) {
       grad_.Compute(std::span<const Vector3>(U_->values()), std::span<const Vector3>(U_->boundary()), grad_U_);
       turbulence_summary_ = turbulence_->Correct(TurbulenceInputs{*U_, grad_U_, RelativeFlux(), dt, time_});

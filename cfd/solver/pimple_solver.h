@@ -119,6 +119,10 @@ class PimpleSolver {
   // the start and on SetState, so a restart sees the same placement.
   using MeshMotion = std::function<void(double t, std::vector<double>& mesh_flux)>;
   void SetMeshMotion(MeshMotion motion) { mesh_motion_ = std::move(motion); }
+  // Called after each outer iteration of a step with its index (couplers of
+  // the run driver: body motion, propeller and rudder forces).
+  using OuterIterationHook = std::function<void(int outer)>;
+  void SetOuterIterationHook(OuterIterationHook hook) { outer_hook_ = std::move(hook); }
   // Recomputes the geometry the solver caches (least-squares gradient
   // vectors, non-orthogonal and skewness corrections) after the mesh moved.
   void RefreshGeometry();
@@ -164,6 +168,7 @@ class PimpleSolver {
   std::vector<std::vector<double>> phi_old_;
   std::vector<double> mesh_flux_;
   MeshMotion mesh_motion_;
+  OuterIterationHook outer_hook_;
   std::vector<double> flux_rel_;
   bool non_orth_correction_ = true;
   double time_ = 0.0;

@@ -10,7 +10,7 @@
 #include <map>
 #include <sstream>
 
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "data/schema/atomic_file.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
@@ -246,14 +246,9 @@ GciStudy RunGciStudy(const GciStudyOptions& options) {
   if (!root["mesh"].Has("poly_mesh")) {
     root["mesh"].Fail("a poly_mesh entry (kelvin gci replaces it by each grid of the family)");
   }
-  // Steady runs stop on time.steady or on the resistance section's criterion.
-  const bool steady = root["time"].Has("steady") || root.Has("resistance");
-  fs::path runs = options.runs;
-  if (runs.empty()) {
-    fs::path out = root["output"].Get<std::string>("directory", "results");
-    if (out.is_relative()) out = options.case_file.parent_path() / out;
-    runs = out / "gci";
-  }
+  const CaseSettings settings = ReadCaseSettings(root, options.case_file.parent_path());
+  const bool steady = settings.time.steady.has_value();  // the run stops on time.steady
+  const fs::path runs = options.runs.empty() ? settings.output.directory / "gci" : options.runs;
   GciStudy study;
   for (const FamilyGrid& g : family) {
     GridRunRecord r;

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "cfd/field/field.h"
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "cfd/solver/pimple_solver.h"
 #include "data/schema/errors.h"
 #include "tests/test_utilities/test_utilities.h"

@@ -12,10 +12,12 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
+#include "cfd/run/run_case.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "identification/campaign_file.h"
@@ -284,6 +286,49 @@ TEST(CfdCampaign, BadCfdSectionIsOneClearError) {
     std::ofstream(p) << "campaign: {name: a, ship: s.yaml, solver: mmg}\ncfd: {case: c.yaml}\n"
                         "tests: {pure_sway_v_prime: [0.1]}\n";
     EXPECT_THROW(ident::LoadCampaignFile(p), ConfigError);
+  }
+}
+
+}  // namespace
+}  // namespace kelvin::cfd
+
+namespace kelvin::cfd {
+namespace {
+
+// One run driver: a campaign job and a `kelvin run` of the same case and
+// motion give identical loads, step for step and bit for bit.
+TEST(CfdCampaign, AJobAndAKelvinRunOfTheSameCaseAgree) {
+  ScopedTempDir tmp;
+  std::string tests = ReadText(WriteCampaign(tmp / "c"));
+  tests.replace(tests.find("static_drift_deg: [0, 5, -5]"), 28, "static_drift_deg: [0]");
+  std::ofstream(tmp / "c" / "campaign.yaml") << tests;
+  const ident::CampaignFile f = ident::LoadCampaignFile(tmp / "c" / "campaign.yaml");
+  ASSERT_TRUE(RunCfdCampaign(f, Quiet()).complete);
+  const ident::CaptiveCampaign campaign = ident::ReadCampaignH5(f.cfd.directory / (f.name + ".h5"));
+  const auto drift = std::find_if(campaign.runs.begin(), campaign.runs.end(), [](const ident::CaptiveRun& r) {
+    return r.motion.kind == ident::MotionKind::kStaticDrift;
+  });
+  ASSERT_NE(drift, campaign.runs.end());
+
+  std::string text = ReadText(DataDir() / "block2d_case.yaml");
+  text.replace(text.find("time: {dt: 0.1}"), 15,
+               "motion: {kind: static_drift, speed: 1.0, ramp_time: 1.0, centre: [0, 0, 0]}\n"
+               "reference: {speed: 1.0, direction: [-1, 0, 0], length: 1.0, draft: 1.0}\n"
+               "time: {dt: 0.1, end: 5.0}");
+  text.replace(text.find("forces: [obstacle]}"), 19, "forces: [obstacle], captive: true}");
+  text.replace(text.find("directory: ../results/block2d"), 29, "directory: " + (tmp / "run").string());
+  std::ofstream(tmp / "case.yaml") << text;
+  RunOptions o;
+  o.progress = false;
+  const RunSummary s = RunCase(tmp / "case.yaml", o);
+  ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+
+  const data::H5Reader job(f.cfd.directory / drift->name / "result.h5"), run(tmp / "run" / "history.h5");
+  for (const char* channel : {"time", "X", "Y", "N", "X_pressure", "Y_viscous", "N_viscous", "x0", "psi"}) {
+    const std::string ds = std::string("captive/") + channel;
+    const std::vector<double> a = job.Read(ds).values, b = run.Read(ds).values;
+    ASSERT_EQ(a.size(), 50u) << ds;
+    EXPECT_EQ(a, b) << ds;  // bit for bit
   }
 }
 

@@ -1,4 +1,4 @@
-// `kelvin run case.yaml`: runs a CFD case file (see cfd/io/case_runner.h).
+// `kelvin run case.yaml`: runs a CFD case file (see cfd/run/run_case.h).
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "data/schema/errors.h"
 #include "tools/kelvin/commands.h"
 

@@ -22,7 +22,7 @@
 #include <sstream>
 #include <string>
 
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "data/schema/h5_file.h"
 #include "tests/test_utilities/test_utilities.h"
 

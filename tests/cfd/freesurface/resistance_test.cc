@@ -1,4 +1,4 @@
-// Unit tests of the steady-resistance outputs (cfd/freesurface/resistance.h),
+// Unit tests of the steady-resistance outputs (cfd/freesurface/wave_analysis.h),
 // all against closed-form answers:
 // - wave cuts and the hull wave profile reproduce a linear elevation exactly
 //   (linear reconstruction with the least-squares gradient, exact for
@@ -15,7 +15,7 @@
 //   resistance;
 // - with the rigid-lid start it releases the surface after one window and
 //   converges to the resistance of the run without it.
-#include "cfd/freesurface/resistance.h"
+#include "cfd/freesurface/wave_analysis.h"
 
 #include <gtest/gtest.h>
 
@@ -25,7 +25,7 @@
 #include <limits>
 #include <string>
 
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "cfd/mesh/box_mesh.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
@@ -99,50 +99,6 @@ TEST(WaveOutputs, WaterlineForceOfALinearElevationIsClosedForm) {
   EXPECT_NEAR(WaterlineForce(s, flat, mesh.FindPatch("obstacle"), rho, g).norm(), 0.0, 1e-11);
 }
 
-TEST(SteadyConvergence, StopsWhereTheClosedFormSays) {
-  // R(t) = R0 (1 + A e^{-t/tau}); eta(t) = eta0 (1 + B e^{-t/tau2}). Over a
-  // window W ending at t the largest change is against the oldest sample:
-  // force: R0 A e^{-t/tau} (e^{W/tau} - 1) / R(t); eta: B e^{-t/tau2}
-  // (e^{W/tau2} - 1) / (1 + B e^{-t/tau2}).
-  const double R0 = 40.0, A = 0.5, tau = 3.0, B = 0.3, tau2 = 5.0, W = 4.0, tol = 1e-3, dt = 0.25;
-  SteadyConvergence c(W, tol);
-  const std::vector<double> eta0 = {0.01, -0.02, 0.005};
-  int stop = -1;
-  for (int n = 1; n <= 400 && stop < 0; ++n) {
-    const double t = n * dt;
-    const double r = R0 * (1 + A * std::exp(-t / tau));
-    const double forces[3] = {r, 0.3 * r, 0.7 * r};
-    std::vector<double> eta(eta0);
-    for (double& e : eta) e *= 1 + B * std::exp(-t / tau2);
-    c.Add(t, forces, eta);
-    if (t < W + dt - 1e-12) {  // the first sample is at t = dt
-      EXPECT_TRUE(std::isnan(c.force_change()));
-      EXPECT_FALSE(c.Converged());
-      continue;
-    }
-    const double fc = R0 * A * std::exp(-t / tau) * std::expm1(W / tau) / r;
-    const double ec = B * std::exp(-t / tau2) * std::expm1(W / tau2) / (1 + B * std::exp(-t / tau2));
-    EXPECT_NEAR(c.force_change(), fc, 1e-12);
-    EXPECT_NEAR(c.eta_change(), ec, 1e-12);
-    if (c.Converged()) stop = n;
-  }
-  // The eta criterion is the slower one: first t with ec < tol.
-  int expected = -1;
-  for (int n = 1; n <= 400; ++n) {
-    const double t = n * dt;
-    const double ec = B * std::exp(-t / tau2) * std::expm1(W / tau2) / (1 + B * std::exp(-t / tau2));
-    const double fc = A * std::exp(-t / tau) * std::expm1(W / tau) / (1 + A * std::exp(-t / tau));
-    if (t >= W + dt - 1e-12 && ec < tol && fc < tol) {
-      expected = n;
-      break;
-    }
-  }
-  ASSERT_GT(expected, 0);
-  EXPECT_EQ(stop, expected);
-  EXPECT_THROW(SteadyConvergence(0.0, tol), ConfigError);
-  EXPECT_THROW(SteadyConvergence(W, 1.5), ConfigError);
-}
-
 TEST(FreeSurfaceRestart, AnEmptyStateStartsFromCalmWater) {
   // A checkpoint of the double body has no free-surface state on the patch:
   // restarting the free-surface run from it starts with eta = 0.
@@ -163,7 +119,8 @@ mesh:
 physics: {nu: 1.0e-2, rho: 998.0}
 schemes: {convection: upwind, gradient: gauss}
 solution: {n_outer: 2, relax: {U: 0.7, p: 0.3, U_final: 1, p_final: 1}}
-time: {dt: 0.5, end: 60}
+reference: {speed: 1, direction: [-1, 0, 0], length: 1.5}
+time: {dt: 0.5, end: 60, ramp_steps: 4, steady: {quantities: [drag, eta], tolerance: 1.0e-3, min_windows: 1}}
 boundary:
   xmax: {U: {type: fixedValue, value: [-1, 0, 0]}, p: {type: zeroGradient}}
   xmin: {U: {type: zeroGradient}, p: {type: fixedValue, value: 0}}
@@ -178,11 +135,8 @@ output: {directory: out, vtu_interval: -1, checkpoint_interval: -1, forces: [obs
 resistance:
   hull: obstacle
   free_surface: zmax
-  inflow: [-1, 0, 0]
-  length: 1.5
   wave_cuts: [1.0]
   wave_cut_points: 24
-  steady: {tolerance: 1.0e-3, min_windows: 1, ramp_steps: 4}
 )";
 
 // What a converged run of a variant of kCase reports.
@@ -286,9 +240,9 @@ TEST(ResistanceCase, WritesCoefficientsConsistentWithItsForcesAndStops) {
 TEST(ResistanceCase, ConvergesAtCourant100ToTheCourant8Resistance) {
   auto run = [](double dt, double* courant) {
     std::string text = kCase;
-    const std::string from = "time: {dt: 0.5, end: 60}";
+    const std::string from = "time: {dt: 0.5, end: 60,";
     text.replace(text.find(from), from.size(), "time: {dt: " + std::to_string(dt) + ", end: " +
-                                                    std::to_string(150 * dt) + "}");
+                                                    std::to_string(150 * dt) + ",");
     const BlockRun r = RunBlockCase(text);
     *courant = r.max_courant;
     return r.r_t;
@@ -304,15 +258,16 @@ TEST(ResistanceCase, ConvergesAtCourant100ToTheCourant8Resistance) {
 
 TEST(ResistanceCase, BadKeysNameTheKey) {
   const std::string base = kCase;
-  const std::string bad_patch = base.substr(0, base.find("  hull: obstacle")) + "  hull: keel\n  inflow: [-1, 0, 0]\n";
+  const std::string bad_patch = base.substr(0, base.find("  hull: obstacle")) + "  hull: keel\n";
   testing::ExpectCaseConfigError(bad_patch, "keel");
-  const std::string no_speed = base.substr(0, base.find("  inflow:")) + "  inflow: [0, 0, 0]\n";
-  testing::ExpectCaseConfigError(no_speed, "inflow");
+  std::string no_speed = base;
+  no_speed.replace(no_speed.find("speed: 1,"), 9, "speed: 0,");
+  testing::ExpectCaseConfigError(no_speed, "speed");
   std::string bad_key = base;
   bad_key.replace(bad_key.find("min_windows"), 11, "min_window");
   testing::ExpectCaseConfigError(bad_key, "min_windows");
   std::string bad_lid = base;
-  bad_lid.replace(bad_lid.find("ramp_steps: 4}"), 14, "ramp_steps: 4, rigid_lid_windows: -1}");
+  bad_lid.replace(bad_lid.find("ramp_steps: 4,"), 14, "ramp_steps: 4, rigid_lid_windows: -1,");
   testing::ExpectCaseConfigError(bad_lid, "rigid_lid_windows = -1");
 }
 
@@ -321,7 +276,7 @@ TEST(ResistanceCase, BadKeysNameTheKey) {
 // as without it, to the same resistance (the lid only changes the start).
 TEST(ResistanceCase, RigidLidStartReleasesAndConvergesToTheSameResistance) {
   std::string with_lid = kCase;
-  with_lid.replace(with_lid.find("ramp_steps: 4}"), 14, "ramp_steps: 4, rigid_lid_windows: 1}");
+  with_lid.replace(with_lid.find("ramp_steps: 4,"), 14, "ramp_steps: 4, rigid_lid_windows: 1,");
   const BlockRun a = RunBlockCase(kCase), b = RunBlockCase(with_lid);
   const double free = a.r_t, held = b.r_t, release_free = a.release_time, release_lid = b.release_time;
   const double flow_through = b.flow_through;
@@ -340,7 +295,7 @@ TEST(ResistanceCase, RigidLidStartReleasesAndConvergesToTheSameResistance) {
 // scalars, the restarted run wrote release_time = NaN).
 TEST(ResistanceCase, RestartAfterTheLidReleaseKeepsTheReleaseTime) {
   std::string full = kCase;
-  full.replace(full.find("ramp_steps: 4}"), 14, "ramp_steps: 4, rigid_lid_windows: 1}");
+  full.replace(full.find("ramp_steps: 4,"), 14, "ramp_steps: 4, rigid_lid_windows: 1,");
   const BlockRun uninterrupted = RunBlockCase(full);
   ASSERT_FALSE(std::isnan(uninterrupted.release_time));
 
@@ -348,7 +303,7 @@ TEST(ResistanceCase, RestartAfterTheLidReleaseKeepsTheReleaseTime) {
   // flow-through, 6 s), checkpoint at the end.
   kelvin::testing::ScopedTempDir tmp;
   std::string first = full;
-  first.replace(first.find("time: {dt: 0.5, end: 60}"), 24, "time: {dt: 0.5, end: 9}");
+  first.replace(first.find("time: {dt: 0.5, end: 60,"), 24, "time: {dt: 0.5, end: 9,");
   first.replace(first.find("checkpoint_interval: -1"), 23, "checkpoint_interval: 0");
   std::filesystem::create_directories(tmp.path() / "first");
   std::filesystem::create_directories(tmp.path() / "second");

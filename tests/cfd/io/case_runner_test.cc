@@ -1,6 +1,6 @@
 // Case files: a clear error for each bad input, a run that writes its
 // outputs, a restart through the CLI, and a diverging run.
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 
 #include <gtest/gtest.h>
 
@@ -143,8 +143,8 @@ TEST(CaseRunner, DivergenceStopsWithAStatusAndKeepsTheLastGoodCheckpoint) {
 namespace kelvin::cfd {
 namespace {
 
-// time.steady stops a run once the force has settled, and output.resistance
-// writes coefficients that are the force over 1/2 rho U^2 S (S: the patch
+// time.steady stops a run once the force has settled, and reference: {speed,
+// direction} writes coefficients that are the force over 1/2 rho U^2 S (S: the patch
 // area by default).
 TEST(CaseRunner, CourantGrowthOnsetFindsTheLastRunAboveTwiceTheMedian) {
   // Median 1: a first surge that settled (indices 5-6), then the final growth
@@ -167,8 +167,9 @@ TEST(CaseRunner, CourantGrowthOnsetFindsTheLastRunAboveTwiceTheMedian) {
 TEST(CaseRunner, SteadyStopAndResistanceCoefficients) {
   kelvin::testing::ScopedTempDir tmp;
   std::string t = CaseText(0.05, 50.0);
-  t.replace(t.find("time: {dt: "), 11, "time: {steady: {window: 10, tolerance: 1.0e-4, min_steps: 20}, dt: ");
-  t.replace(t.find("forces: [ymax]}"), 15, "forces: [ymax], resistance: {speed: 1, direction: [-2, 0, 0]}}");
+  t.replace(t.find("time: {dt: "), 11,
+            "reference: {speed: 1, direction: [-2, 0, 0]}\n"
+            "time: {steady: {quantities: [force], window: 0, window_steps: 10, tolerance: 1.0e-4, min_steps: 20}, dt: ");
   RunOptions o;
   o.progress = false;
   const RunSummary s = RunCase(WriteCase(tmp.path(), t), o);
@@ -177,7 +178,7 @@ TEST(CaseRunner, SteadyStopAndResistanceCoefficients) {
   EXPECT_LT(s.steps, 1000);  // stopped long before time.end
   EXPECT_GE(s.steps, 20);
   EXPECT_LT(s.steady_change, 1e-4);
-  EXPECT_NE(s.message.find("steady: force settled"), std::string::npos) << s.message;
+  EXPECT_NE(s.message.find("steady: settled at step"), std::string::npos) << s.message;
   const data::H5Reader h(tmp.path() / "out" / "history.h5");
   const data::Series fp = h.Read("forces/ymax/pressure"), fv = h.Read("forces/ymax/viscous");
   const data::Series ct = h.Read("resistance/C_T"), cf = h.Read("resistance/C_F"), cp = h.Read("resistance/C_P");
@@ -199,20 +200,45 @@ TEST(CaseRunner, BadSteadyAndResistanceSectionsAreErrors) {
     s.replace(s.find(from), from.size(), to);
     return s;
   };
-  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {window: 1, tolerance: 1.0e-3}, dt: "), "window");
-  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {window: 5, tolerance: 1.0e-3, min_steps: 2}, dt: "),
-                        "min_steps");
-  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {window: 5, tolerance: -1}, dt: "), "tolerance");
-  std::string no_forces = with("time: {dt: ", "time: {steady: {window: 5, tolerance: 1.0e-3}, dt: ");
+  const std::string steady = "time: {steady: {quantities: [force], window: 0, window_steps: 5, tolerance: 1.0e-3";
+  ExpectCaseConfigError(with("time: {dt: ", steady + ", window_steps: 0}, dt: "), "window_steps");
+  ExpectCaseConfigError(with("time: {dt: ", steady + ", min_steps: -2}, dt: "), "min_steps");
+  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {quantities: [force], window: 0, tolerance: -1}, dt: "),
+                        "tolerance");
+  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {quantities: [lift], window: 0}, dt: "),
+                        "one of drag, force, eta");
+  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {quantities: [eta], window: 0}, dt: "),
+                        "no eta: the case has no linearizedFreeSurface patch");
+  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {quantities: [drag], window: 0}, dt: "),
+                        "force instead of drag, or a reference");
+  std::string no_forces = with("time: {dt: ", steady + "}, dt: ");
   no_forces.replace(no_forces.find("forces: [ymax]"), 14, "forces: []");
   ExpectCaseConfigError(no_forces, "output.forces");
-  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 1}}"), "direction");
-  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 1, direction: [0, 0, 0]}}"),
-                        "non-zero finite vector");
-  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 0, direction: [1, 0, 0]}}"),
-                        "speed");
-  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [], resistance: {speed: 1, direction: [1, 0, 0]}}"),
-                        "output.forces");
+  const std::string ref = "reference: {speed: 1";
+  ExpectCaseConfigError(with("time: {dt: ", ref + "}\ntime: {dt: "), "direction");
+  ExpectCaseConfigError(with("time: {dt: ", ref + ", direction: [0, 0, 0]}\ntime: {dt: "), "non-zero finite vector");
+  ExpectCaseConfigError(with("time: {dt: ", "reference: {speed: 0, direction: [1, 0, 0]}\ntime: {dt: "), "speed");
+}
+
+// A key of the older layouts is one error naming its replacement.
+TEST(CaseRunner, OldKeysNameTheirReplacement) {
+  const std::string t = CaseText();
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string s = t;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {window: 10, tolerance: 1.0e-3, min_steps: 20}, dt: "),
+                        "expected a quantities list (drag, force, eta): the steady criterion changed");
+  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 1, direction: [1, 0, 0]}}"),
+                        "key 'output.resistance'");
+  ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 1, direction: [1, 0, 0]}}"),
+                        "reference: {speed, direction, area}");
+  const std::string res = "\nresistance: {hull: ymax, ";
+  ExpectCaseConfigError(t + res + "steady: {tolerance: 1.0e-3}}\n", "time.steady {quantities: [drag, eta]");
+  ExpectCaseConfigError(t + res + "inflow: [-1, 0, 0]}\n", "reference: {speed, direction}");
+  ExpectCaseConfigError(t + res + "wetted_area: 1}\n", "reference.area");
+  ExpectCaseConfigError(t + res + "length: 1}\n", "reference.length");
 }
 
 }  // namespace

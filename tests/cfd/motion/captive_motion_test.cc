@@ -14,7 +14,7 @@
 #include <numbers>
 #include <string>
 
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "cfd/motion/ship_forces.h"
 #include "data/schema/config.h"
 

@@ -19,7 +19,7 @@
 #include <string>
 
 #include "cfd/freesurface/linearized_free_surface.h"
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "cfd/motion/ship_forces.h"
 #include "data/schema/config.h"
 

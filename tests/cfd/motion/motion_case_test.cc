@@ -6,7 +6,7 @@
 
 #include <fstream>
 
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "cfd/grid/mesh_case.h"
 #include "cfd/io/checkpoint.h"
 #include "data/schema/errors.h"
@@ -31,6 +31,7 @@ solution:
   pressure: {solver: pcg_amg, relative_tolerance: 1.0e-6}
 motion: {kind: yaw_drift, speed: 1.0, drift_angle_deg: 5, yaw_amplitude_deg: 10, period: 2.0, ramp_time: 0.5,
          periods: 1, centre: [-0.5, 0, 0.5]}
+reference: {speed: 1.0, direction: [-1, 0, 0], length: 1.0, draft: 1.0}
 time: {dt: 0.05}
 boundary:
   xmin: {U: {type: farField, inflow: [0, 0, 0], band: 0.3}, p: {type: farField, value: 0, band: 0.3}}
@@ -38,8 +39,7 @@ boundary:
   ymin: {U: {type: inletOutlet, inflow: [0, 0, 0]}, p: {type: outletInlet, value: 0}}
   ymax: {U: {type: inletOutlet, inflow: [0, 0, 0]}, p: {type: outletInlet, value: 0}}
   obstacle: {U: {type: movingWallVelocity}, p: {type: zeroGradient}}
-output: {directory: out, vtu_interval: 0, checkpoint_interval: 20, forces: [obstacle],
-         captive: {length: 1.0, draft: 1.0}}
+output: {directory: out, vtu_interval: 0, checkpoint_interval: 20, forces: [obstacle], captive: true}
 )";
 
 TEST(MotionCase, HistoryHoldsShipAxisLoadsAndTheMotion) {
@@ -132,8 +132,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"band: 0.3}, p: {type: farField, value: 0, band: 0.3}}\n  xmax",
                               "band: -1}, p: {type: farField, value: 0, band: 0.3}}\n  xmax",
                               "key 'boundary.xmin.U.band' = '-1'"},
-                      BadCase{"captive: {length: 1.0, draft: 1.0}", "captive: {length: 1.0}",
-                              "missing required key 'output.captive.draft'"}));
+                      BadCase{"length: 1.0, draft: 1.0}", "length: 1.0}",
+                              "expected reference.length and reference.draft (the prime-system scales)"},
+                      BadCase{"captive: true}", "captive: {length: 1.0, draft: 1.0}}",
+                              "output.captive is a flag now; the prime scales are reference.length"}));
 
 TEST(MotionCase, MovingWallVelocityNeedsAMotion) {
   kelvin::testing::ScopedTempDir tmp;

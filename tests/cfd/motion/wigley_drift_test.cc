@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "cfd/motion/ship_forces.h"
 #include "data/schema/config.h"
 #include "tests/test_utilities/test_utilities.h"

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "tests/cfd/cfd_test_support.h"

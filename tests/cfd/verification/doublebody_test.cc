@@ -43,7 +43,7 @@
 #include <cstdlib>
 
 #include "cfd/grid/mesh_case.h"
-#include "cfd/io/case_runner.h"
+#include "cfd/run/run_case.h"
 #include "cfd/verification/flat_plate.h"
 #include "data/schema/h5_file.h"
 #include "tests/test_utilities/test_utilities.h"

@@ -1,0 +1,61 @@
+// The steady resistance report of a run (the `resistance:` section,
+// docs/formulation.md sections 3 and 5): per step the resistance split along
+// reference.direction d (R = F . d, F the force of the water on the hull):
+// friction R_F (wall shear), pressure R_P, total R_T = R_F + R_P, and the
+// waterline correction R_WL (cfd/freesurface/wave_analysis.h), reported apart
+// and never added to R_T. At the end resistance.h5: coefficients by
+// 0.5 rho S U^2 (S = reference.area, the wetted area at rest), the state of
+// the steady criterion (time.steady), the hull face forces, and with a free
+// surface the wave profile along the hull, the wave cuts and the whole
+// pattern. With `double_body` (resistance.h5 of a double-body run on the
+// same grid) also the wave-making part C_W = C_P - C_P(double body) and
+// R_W = C_W 0.5 rho S U^2.
+//
+//   resistance:
+//     hull: hull                  # wall patch whose force is the resistance
+//     free_surface: freeSurface   # linearizedFreeSurface patch (omit: double body)
+//     wave_cuts: [0.6, 1.2]       # y of the wave cuts (m)
+//     wave_cut_points: 400
+//     double_body: ../db/resistance.h5
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cfd/run/case_loader.h"
+#include "cfd/run/monitor.h"
+
+namespace kelvin::cfd {
+
+class ResistanceMonitor final : public Monitor {
+ public:
+  // The case must have a resistance: section (LoadCase has checked its
+  // patches and its reference).
+  explicit ResistanceMonitor(const Case& c);
+
+  std::vector<int> ForcePatches() const override { return {hull_}; }
+  void AfterStep(const PimpleSolver& solver, const StepRecord& record, History& history) override;
+  // Writes <output>/resistance.h5; returns its one-paragraph summary.
+  std::vector<std::string> Finish(const PimpleSolver& solver) override;
+
+  // Per recorded step: time, R_T, R_F, R_P, R_WL, force change, eta change.
+  const std::vector<std::array<double, 7>>& rows() const { return rows_; }
+
+ private:
+  std::string Write(const std::filesystem::path& file, const PimpleSolver& solver) const;
+
+  ResistanceOptions options_;
+  CaseReference reference_;
+  double rho_, nu_, g_ = 9.81;
+  std::filesystem::path file_;
+  const LinearizedFreeSurface* free_surface_;
+  int hull_ = -1;
+  double flow_through_ = 0.0;
+  SteadyStatus steady_;
+  double tolerance_;
+  std::vector<std::array<double, 7>> rows_;
+};
+
+}  // namespace kelvin::cfd

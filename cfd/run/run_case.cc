@@ -1,0 +1,87 @@
+#include "cfd/run/run_case.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <memory>
+#include <vector>
+
+#include "cfd/run/captive_sampler.h"
+#include "cfd/run/resistance_monitor.h"
+#include "cfd/run/standard_monitors.h"
+
+namespace kelvin::cfd {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The monitors the case's sections ask for, in the order they run.
+std::vector<std::unique_ptr<Monitor>> MakeMonitors(const Case& c) {
+  const CaseSettings& s = c.settings;
+  std::vector<std::unique_ptr<Monitor>> m;
+  m.push_back(std::make_unique<FieldOutput>(s.output.directory, s.output.vtu_interval));
+  m.push_back(std::make_unique<TurbulenceReport>());
+  if (s.reference.speed > 0.0 && !c.force_patches.empty()) m.push_back(std::make_unique<ForceCoefficients>(c));
+  if (s.resistance) m.push_back(std::make_unique<ResistanceMonitor>(c));
+  if (s.output.captive) {
+    const PrimeScales scales{s.rho, s.reference.length, s.reference.draft, c.motion->motion().options().speed};
+    m.push_back(std::make_unique<CaptiveSampler>(c, c.force_patches, scales));
+  }
+  return m;
+}
+
+std::string SteadyLine(const SteadyStatus& st, const SteadyOptions& o) {
+  const std::string changes = fmt::format("force change {:.3g}, eta change {:.3g} over {:.4g} s / >= {} steps",
+                                          st.force_change, st.eta_change, st.window, o.criterion.window_steps);
+  return st.settled ? fmt::format("steady: settled at step {} ({})", st.settled_step, changes)
+                    : fmt::format("steady: NOT settled by time.end ({}, tolerance {:.3g})", changes,
+                                  o.criterion.tolerance);
+}
+
+}  // namespace
+
+RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
+  CaseOverrides overrides;
+  overrides.poly_mesh = options.poly_mesh_override;
+  overrides.output = options.output_override;
+  Case c = LoadCaseFile(case_file, overrides);
+  spdlog::info("mesh quality:\n{}", c.mesh->Quality().Report());
+  fs::create_directories(c.settings.output.directory);
+  std::vector<std::unique_ptr<Monitor>> owned = MakeMonitors(c);
+  std::vector<Monitor*> monitors;
+  for (auto& m : owned) monitors.push_back(m.get());
+  RunDriverOptions o;
+  o.restart = options.restart;
+  o.checkpoint = c.settings.output.directory / "checkpoint.h5";
+  o.checkpoint_interval = c.settings.output.checkpoint_interval;
+  o.history = c.settings.output.directory / "history.h5";
+  o.progress = options.progress;
+  const RunDriverSummary d = RunDriver(c, monitors, o);
+
+  RunSummary summary;
+  summary.steps = d.steps;
+  summary.time = d.time;
+  summary.output_directory = c.settings.output.directory;
+  summary.last_checkpoint = d.last_checkpoint;
+  summary.wall_seconds = d.wall_seconds;
+  summary.outer_iterations = d.outer_iterations;
+  summary.steady_converged = d.steady.settled;
+  summary.steady_change = d.steady.force_change;
+  if (d.status == RunDriverSummary::Status::kDiverged) {
+    summary.status = RunSummary::Status::kDiverged;
+    summary.message = d.message;
+    return summary;
+  }
+  summary.message = fmt::format("completed {} steps to t = {:.6g} s; results in {}", summary.steps, summary.time,
+                                summary.output_directory.string());
+  if (c.settings.time.steady) summary.message += "\n  " + SteadyLine(d.steady, *c.settings.time.steady);
+  for (const std::string& line : d.report) summary.message += "\n  " + line;
+  if (c.settings.time.steady && !d.steady.settled) {
+    spdlog::warn("{}: the steady criterion was NOT met by time.end; the forces still change by {:.3g} of their size",
+                 case_file.string(), d.steady.force_change);
+  }
+  return summary;
+}
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,308 @@
+#include "cfd/run/run_driver.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <limits>
+#include <set>
+
+#include "cfd/freesurface/linearized_free_surface.h"
+#include "cfd/io/checkpoint.h"
+#include "data/report/progress.h"
+
+namespace kelvin::cfd {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The driver's own history columns.
+struct CoreColumns {
+  History::Column time, courant, res_U, res_p, continuity, wall, outer, pressure_iterations, cpu, courant_location;
+  std::vector<History::Column> pressure, viscous;  // per output.forces patch
+
+  CoreColumns(History& h, const Mesh& mesh, std::span<const int> force_patches) {
+    time = h.Add("time", 1, "s", "simulated time at the end of each step");
+    courant = h.Add("courant", 1, "1", "maximum Courant number");
+    res_U = h.Add("residuals/U", 1, "1", "initial normalized momentum residual of the step");
+    res_p = h.Add("residuals/p", 1, "1", "initial normalized pressure residual of the step");
+    continuity = h.Add("continuity", 1, "1", "max_cells |sum F| / sum |F| after the correction");
+    wall = h.Add("wall_time", 1, "s", "wall-clock time since the start of the time loop");
+    outer = h.Add("outer_iterations", 1, "1", "PIMPLE outer iterations of the step");
+    pressure_iterations = h.Add("pressure_iterations", 1, "1", "pressure CG iterations of the step");
+    cpu = h.Add("cpu_time", 1, "s", "process CPU time since the start of the time loop");
+    courant_location = h.Add("courant_location", 3, "m",
+                             "centre of the cell with the largest Courant number (mesh position at that step)");
+    for (int k : force_patches) {
+      const std::string& name = mesh.patches()[k].name;
+      pressure.push_back(h.Add("forces/" + name + "/pressure", 3, "N", "pressure force on the patch"));
+      viscous.push_back(h.Add("forces/" + name + "/viscous", 3, "N", "viscous force on the patch"));
+    }
+  }
+
+  void Fill(History& h, const Mesh& mesh, const StepRecord& r, std::span<const int> force_patches) const {
+    const StepSummary& s = r.step;
+    h.Set(time, s.time);
+    h.Set(courant, s.courant_max);
+    h.Set(res_U, s.initial_residual_U);
+    h.Set(res_p, s.initial_residual_p);
+    h.Set(continuity, s.continuity_error);
+    h.Set(wall, r.wall_seconds);
+    h.Set(outer, static_cast<double>(s.outer_iterations));
+    h.Set(pressure_iterations, static_cast<double>(s.pressure_iterations));
+    h.Set(cpu, r.cpu_seconds);
+    h.Set(courant_location, s.courant_cell >= 0 ? mesh.cell_centres()[s.courant_cell]
+                                                : Vector3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    for (std::size_t k = 0; k < force_patches.size(); ++k) {
+      const PatchForce f = r.forces.Sum(force_patches[k]);
+      h.Set(pressure[k], f.pressure);
+      h.Set(viscous[k], f.viscous);
+    }
+  }
+};
+
+// The groups of the steady criterion at this step.
+std::vector<SteadyGroup> SteadyGroups(const Case& c, const StepForces& forces) {
+  std::vector<SteadyGroup> groups;
+  const auto& steady = c.settings.time.steady;
+  if (!steady) return groups;
+  const PatchForce f = forces.Sum(c.force_patches);
+  for (SteadyQuantity q : steady->quantities) {
+    if (q == SteadyQuantity::kDrag) {
+      const Vector3& d = c.settings.reference.direction;
+      const double rp = f.pressure.dot(d), rf = f.viscous.dot(d);
+      groups.push_back({{rp + rf, rp, rf}, rp + rf});
+    } else if (q == SteadyQuantity::kForce) {
+      const Vector3 t = f.total();
+      groups.push_back({{t.x(), t.y(), t.z()}, t.norm()});
+    }
+  }
+  return groups;
+}
+
+std::span<const double> SteadyEta(const Case& c) {
+  const auto& steady = c.settings.time.steady;
+  if (!steady || !c.free_surface) return {};
+  const auto& q = steady->quantities;
+  if (std::find(q.begin(), q.end(), SteadyQuantity::kEta) == q.end()) return {};
+  return c.free_surface->eta();
+}
+
+std::string DivergenceMessage(const StepSummary& s, const History& h, History::Column courant,
+                              History::Column location, const fs::path& last_checkpoint) {
+  std::string m = fmt::format(
+      "diverged at step {} (t = {:.6g} s): non-finite residual or field (U residual {:.3g}, p residual {:.3g}, "
+      "Courant {:.3g}); last good checkpoint: {}",
+      s.step, s.time, s.initial_residual_U, s.initial_residual_p, s.courant_max,
+      last_checkpoint.empty() ? "none" : last_checkpoint.string());
+  if (h.rows() == 0) return m;
+  // Where the blow-up began: the first of the last run of steps whose
+  // Courant number exceeds twice the median of the run (by the last finite
+  // step the growth has usually spread far from its origin).
+  const std::span<const double> co = h.Values(courant);
+  const auto [onset, grew, median] = CourantGrowthOnset(co);
+  const std::span<const double> x = h.Values(location).subspan(3 * onset, 3);
+  const int step = s.step - static_cast<int>(co.size() - onset);
+  m += grew ? fmt::format("; the largest Courant number rose above twice the run's median ({:.3g}) from step {} "
+                          "on, {:.3g} then, in the cell at ({:.4g}, {:.4g}, {:.4g}) m",
+                          median, step, co[onset], x[0], x[1], x[2])
+            : fmt::format("; the largest Courant number of the last finite step ({}), {:.3g}, was in the cell at "
+                          "({:.4g}, {:.4g}, {:.4g}) m",
+                          step, co[onset], x[0], x[1], x[2]);
+  return m + " (history.h5 courant_location has every step)";
+}
+
+std::vector<int> PatchesToCompute(const Case& c, std::span<Monitor* const> monitors) {
+  std::set<int> all(c.force_patches.begin(), c.force_patches.end());
+  for (Monitor* m : monitors) {
+    for (int k : m->ForcePatches()) all.insert(k);
+  }
+  return {all.begin(), all.end()};
+}
+
+class Loop {
+ public:
+  Loop(Case& c, std::span<Monitor* const> monitors, const RunDriverOptions& options)
+      : c_(c), solver_(*c.solver), monitors_(monitors), options_(options),
+        time_control_(c.settings.time, c.free_surface), core_(history_, *c.mesh, c.force_patches),
+        patches_(PatchesToCompute(c, monitors)) {}
+
+  RunDriverSummary Run();
+
+ private:
+  // A checkpoint every checkpoint_interval steps, and on the last step
+  // unless the caller keeps none there (interval < 0: never).
+  bool CheckpointDue(bool last) const {
+    const int interval = options_.checkpoint_interval;
+    if (options_.checkpoint.empty()) return false;
+    if (last) return options_.checkpoint_at_end && interval >= 0;
+    return interval > 0 && solver_.step() % interval == 0;
+  }
+  void Start();
+  void Checkpoint();
+  void WriteHistory() const;
+
+  Case& c_;
+  PimpleSolver& solver_;
+  std::span<Monitor* const> monitors_;
+  const RunDriverOptions& options_;
+  TimeControl time_control_;
+  History history_;
+  CoreColumns core_;
+  std::vector<int> patches_;
+  StepForces forces_;
+  RunDriverSummary summary_;
+};
+
+void Loop::Start() {
+  CheckpointScalars scalars;
+  const bool restarted = !options_.restart.empty();
+  if (restarted) scalars = ReadCheckpoint(options_.restart, solver_);
+  time_control_.Start(solver_, restarted, scalars, c_.settings.reference.velocity());
+  const RunStart start{restarted, scalars};
+  for (Monitor* m : monitors_) m->Start(solver_, history_, start);
+  solver_.SetOuterIterationHook([this](int outer) {
+    for (Monitor* m : monitors_) m->AfterOuterIteration(solver_, outer);
+  });
+}
+
+void Loop::WriteHistory() const {
+  if (options_.history.empty() || history_.rows() == 0) return;
+  data::H5Writer w(options_.history);
+  history_.Write(w);
+  const SteadyStatus& st = time_control_.status();
+  if (st.enabled) {
+    w.WriteArray("steady/change", std::vector<double>{st.force_change}, {1}, "1",
+                 "relative change of the monitored forces over the time.steady window at the last step");
+    w.WriteArray("steady/eta_change", std::vector<double>{st.eta_change}, {1}, "1",
+                 "relative L2 change of eta over the time.steady window at the last step (0: not monitored)");
+    w.WriteArray("steady/converged", std::vector<double>{st.settled ? 1.0 : 0.0}, {1}, "1",
+                 "1 when the steady criterion was met before time.end");
+  }
+  for (Monitor* m : monitors_) m->WriteHistory(w);
+  w.Commit();
+}
+
+void Loop::Checkpoint() {
+  for (Monitor* m : monitors_) m->BeforeCheckpoint(solver_);
+  CheckpointScalars scalars = time_control_.CheckpointScalars();
+  for (Monitor* m : monitors_) m->AddCheckpointScalars(scalars);
+  WriteCheckpoint(options_.checkpoint, solver_, scalars);
+  summary_.last_checkpoint = options_.checkpoint;
+  WriteHistory();
+}
+
+RunDriverSummary Loop::Run() {
+  Start();
+  const int total_steps = time_control_.StepsToEnd(solver_.time());
+  Progress::Options po;
+  po.label = options_.label;
+  po.enabled = options_.progress;
+  Progress progress(std::max(total_steps, 1), po);
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  for (int i = 0; i < total_steps; ++i) {
+    if (options_.step_budget > 0 && summary_.steps >= options_.step_budget) {
+      summary_.status = RunDriverSummary::Status::kStopped;
+      break;
+    }
+    const std::clock_t cpu_before = std::clock();
+    const StepSummary s = solver_.Step(time_control_.NextTimeStep());
+    const double step_cpu = static_cast<double>(std::clock() - cpu_before) / CLOCKS_PER_SEC;
+    summary_.outer_iterations += s.outer_iterations;
+    ++summary_.steps;
+    if (!s.finite) {
+      summary_.status = RunDriverSummary::Status::kDiverged;
+      summary_.message =
+          DivergenceMessage(s, history_, core_.courant, core_.courant_location, summary_.last_checkpoint);
+      break;
+    }
+    forces_.Compute(solver_, patches_, c_.settings.rho, c_.settings.nu);
+    time_control_.Record(solver_, SteadyGroups(c_, forces_), SteadyEta(c_));
+    StepRecord record{s, forces_, time_control_.status()};
+    record.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    record.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    record.step_cpu_seconds = step_cpu;
+    record.last = i + 1 == total_steps || time_control_.settled();
+    history_.NewRow();
+    core_.Fill(history_, *c_.mesh, record, c_.force_patches);
+    for (Monitor* m : monitors_) m->AfterStep(solver_, record, history_);
+    if (CheckpointDue(record.last)) Checkpoint();
+    progress.Update(i + 1, fmt::format("step {} t={:.4g} Co={:.3g} U={:.2e} p={:.2e}", s.step, s.time,
+                                       s.courant_max, s.initial_residual_U, s.initial_residual_p));
+    if (time_control_.settled()) break;
+  }
+  solver_.SetOuterIterationHook(nullptr);
+  WriteHistory();
+  const bool completed = summary_.status == RunDriverSummary::Status::kCompleted;
+  progress.Finish(completed ? "done" : summary_.status == RunDriverSummary::Status::kDiverged ? "diverged" : "stopped");
+  summary_.time = solver_.time();
+  summary_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary_.steady = time_control_.status();
+  if (completed && summary_.steps > 0) {
+    for (Monitor* m : monitors_) {
+      for (std::string& line : m->Finish(solver_)) summary_.report.push_back(std::move(line));
+    }
+  }
+  return summary_;
+}
+
+}  // namespace
+
+void StepForces::Compute(const PimpleSolver& solver, std::span<const int> patches, double rho, double nu) {
+  faces_.clear();
+  sums_.clear();
+  for (int k : patches) Set(k, ComputePatchFaceForces(solver, k, rho, nu));
+}
+
+void StepForces::Set(int patch, PatchFaceForces faces) {
+  PatchForce sum;
+  for (std::size_t i = 0; i < faces.pressure.size(); ++i) {
+    sum.pressure += faces.pressure[i];
+    sum.viscous += faces.viscous[i];
+  }
+  sums_[patch] = sum;
+  faces_[patch] = std::move(faces);
+}
+
+const PatchFaceForces& StepForces::Faces(int patch) const {
+  const auto it = faces_.find(patch);
+  KELVIN_CHECK(it != faces_.end(), "the face forces of a patch the run computes");
+  return it->second;
+}
+
+PatchForce StepForces::Sum(int patch) const {
+  const auto it = sums_.find(patch);
+  KELVIN_CHECK(it != sums_.end(), "the force of a patch the run computes");
+  return it->second;
+}
+
+PatchForce StepForces::Sum(std::span<const int> patches) const {
+  PatchForce f;
+  for (int k : patches) {
+    const PatchForce p = Sum(k);
+    f.pressure += p.pressure;
+    f.viscous += p.viscous;
+  }
+  return f;
+}
+
+CourantOnset CourantGrowthOnset(std::span<const double> courant) {
+  KELVIN_CHECK(!courant.empty(), "a Courant history");
+  std::vector<double> sorted(courant.begin(), courant.end());
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  CourantOnset o;
+  o.median = sorted[sorted.size() / 2];
+  o.step = courant.size() - 1;
+  o.grew = courant.back() > 2.0 * o.median;
+  while (o.grew && o.step > 0 && courant[o.step - 1] > 2.0 * o.median) --o.step;
+  return o;
+}
+
+RunDriverSummary RunDriver(Case& c, std::span<Monitor* const> monitors, const RunDriverOptions& options) {
+  Loop loop(c, monitors, options);
+  return loop.Run();
+}
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,131 @@
+#include "cfd/run/standard_monitors.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "cfd/turbulence/turbulence_model.h"
+
+namespace kelvin::cfd {
+
+namespace fs = std::filesystem;
+
+// --- FieldOutput -------------------------------------------------------------
+
+FieldOutput::FieldOutput(const fs::path& directory, int interval)
+    : directory_(directory), interval_(interval), pvd_(directory / "fields.pvd") {}
+
+void FieldOutput::AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) {
+  if ((record.last && interval_ >= 0) || (interval_ > 0 && solver.step() % interval_ == 0)) Write(solver);
+}
+
+void FieldOutput::Write(const PimpleSolver& solver) {
+  const Mesh& mesh = solver.mesh();
+  VtuCellData u{"U", 3, {}}, p{"p", 1, {}};
+  for (int i = 0; i < mesh.n_cells(); ++i) {
+    for (int k = 0; k < 3; ++k) u.values.push_back(solver.U()[i][k]);
+    p.values.push_back(solver.p()[i]);
+  }
+  const fs::path file = directory_ / fmt::format("fields_{:06d}.vtu", solver.step());
+  std::vector<VtuCellData> cell_data = {u, p};
+  if (const TurbulenceModel* t = solver.turbulence()) {
+    for (TurbulenceOutput& o : t->CellOutputs()) cell_data.push_back({o.name, o.components, std::move(o.values)});
+  }
+  WriteVtu(file, mesh, cell_data);
+  pvd_.Add(solver.time(), file);
+  // Patches whose conditions have their own unknowns (eta): a surface file
+  // with those, p and U per face, in a series of their own.
+  const int ni = mesh.n_internal_faces();
+  for (int k = 0; k < solver.p().n_patches(); ++k) {
+    auto fields = solver.p().bc(k).FaceFields();
+    if (fields.empty()) continue;
+    const Patch& patch = mesh.patches()[k];
+    std::vector<VtuCellData> data;
+    for (auto& [name, values] : fields) data.push_back({name, 1, std::move(values)});
+    VtuCellData pf{"p", 1, {}}, uf{"U", 3, {}};
+    for (int f = patch.start; f < patch.start + patch.size; ++f) {
+      pf.values.push_back(solver.p().boundary()[f - ni]);
+      for (int d = 0; d < 3; ++d) uf.values.push_back(solver.U().boundary()[f - ni][d]);
+    }
+    data.push_back(std::move(pf));
+    data.push_back(std::move(uf));
+    const fs::path surface_file = directory_ / fmt::format("{}_{:06d}.vtp", patch.name, solver.step());
+    WritePatchVtp(surface_file, mesh, patch, data);
+    auto [series, inserted] = surfaces_.try_emplace(patch.name, directory_ / (patch.name + ".pvd"));
+    series->second.Add(solver.time(), surface_file);
+  }
+}
+
+// --- TurbulenceReport --------------------------------------------------------
+
+void TurbulenceReport::Start(PimpleSolver& solver, History& h, const RunStart&) {
+  const TurbulenceModel* t = solver.turbulence();
+  if (!t) return;
+  res_k_ = h.Add("turbulence/residuals/k", 1, "1", "initial normalized residual of k");
+  res_omega_ = h.Add("turbulence/residuals/omega", 1, "1", "initial normalized residual of omega");
+  bounded_k_ = h.Add("turbulence/bounded/k", 1, "1", "cells the bound step lifted to the floor (k)");
+  bounded_omega_ = h.Add("turbulence/bounded/omega", 1, "1", "cells the bound step lifted to the floor (omega)");
+  for (const WallPatchStats& w : t->WallStats()) {
+    y_plus_.push_back(h.Add("turbulence/y_plus/" + w.patch, 3, "1",
+                            "first-cell y+ on the wall patch: min, area-weighted mean, max"));
+  }
+}
+
+void TurbulenceReport::AfterStep(const PimpleSolver& solver, const StepRecord& record, History& h) {
+  const TurbulenceModel* t = solver.turbulence();
+  if (!t) return;
+  const TurbulenceSummary& ts = solver.turbulence_summary();
+  h.Set(res_k_, ts.initial_residual_k);
+  h.Set(res_omega_, ts.initial_residual_omega);
+  h.Set(bounded_k_, static_cast<double>(ts.bounded_k));
+  h.Set(bounded_omega_, static_cast<double>(ts.bounded_omega));
+  last_ = t->WallStats();
+  for (std::size_t k = 0; k < last_.size() && k < y_plus_.size(); ++k) {
+    h.Set(y_plus_[k], Vector3(last_[k].y_plus_min, last_[k].y_plus_mean, last_[k].y_plus_max));
+  }
+  if (ts.bounded_k + ts.bounded_omega > 0) {
+    spdlog::warn("step {}: the bound step lifted {} k and {} omega cells to the floor", record.step.step,
+                 ts.bounded_k, ts.bounded_omega);
+  }
+}
+
+std::vector<std::string> TurbulenceReport::Finish(const PimpleSolver&) {
+  std::vector<std::string> lines;
+  for (const WallPatchStats& w : last_) {
+    lines.push_back(fmt::format("y+ on {}: min {:.3g}, mean {:.3g}, max {:.3g}", w.patch, w.y_plus_min,
+                                w.y_plus_mean, w.y_plus_max));
+  }
+  return lines;
+}
+
+// --- ForceCoefficients -------------------------------------------------------
+
+ForceCoefficients::ForceCoefficients(const Case& c)
+    : patches_(c.force_patches), reference_(c.settings.reference), rho_(c.settings.rho) {}
+
+void ForceCoefficients::Start(PimpleSolver&, History& h, const RunStart&) {
+  columns_[0] = h.Add("resistance/C_T", 1, "1", "total resistance coefficient F.d / (rho U^2 S / 2) of the force patches");
+  columns_[1] = h.Add("resistance/C_F", 1, "1", "viscous (friction) part of C_T");
+  columns_[2] = h.Add("resistance/C_P", 1, "1", "pressure part of C_T");
+}
+
+void ForceCoefficients::AfterStep(const PimpleSolver&, const StepRecord& record, History& h) {
+  const PatchForce f = record.forces.Sum(patches_);
+  const double q = 0.5 * rho_ * reference_.speed * reference_.speed * reference_.area;
+  const double cp = f.pressure.dot(reference_.direction) / q, cf = f.viscous.dot(reference_.direction) / q;
+  last_[0] = cp + cf;
+  last_[1] = cf;
+  last_[2] = cp;
+  for (int j = 0; j < 3; ++j) h.Set(columns_[j], last_[j]);
+}
+
+void ForceCoefficients::WriteHistory(data::H5Writer& w) const {
+  w.WriteArray("resistance/reference", std::vector<double>{reference_.speed, reference_.area, rho_}, {3},
+               "m/s, m^2, kg/m^3", "reference speed U, area S and density rho of the coefficients");
+}
+
+std::vector<std::string> ForceCoefficients::Finish(const PimpleSolver&) {
+  return {fmt::format("resistance: C_T {:.5e} = C_F {:.5e} + C_P {:.5e} (U {:.4g} m/s, S {:.5g} m^2)", last_[0],
+                      last_[1], last_[2], reference_.speed, reference_.area)};
+}
+
+}  // namespace kelvin::cfd
