@@ -1,5 +1,5 @@
 // The linearized free-surface condition on the calm-water plane z = 0
-// (docs/lfs-formulation.md section 3). It is the pressure condition of the
+// (docs/formulation.md section 3). It is the pressure condition of the
 // `freeSurface` patch and owns the wave elevation eta (m) of each face.
 //
 // Dynamic condition:   p_f = g eta_f + p_a,f   (p kinematic, p_a an optional

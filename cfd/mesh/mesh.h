@@ -124,7 +124,7 @@ class Mesh {
   double total_volume() const;
   MeshQuality Quality() const;
 
-  // Rigid placement (docs/lfs-formulation.md section 2): every point, centre,
+  // Rigid placement (docs/formulation.md section 2): every point, centre,
   // area vector and delta becomes x_E = rotation * xi + translation of the
   // body-fixed geometry given at construction (kept aside on the first call),
   // so repeated placements never accumulate round-off. Volumes, areas and

@@ -1,4 +1,4 @@
-// Rigid motion of the whole mesh with the hull (docs/lfs-formulation.md
+// Rigid motion of the whole mesh with the hull (docs/formulation.md
 // section 2): the earth-frame geometry follows from the pose each step and the
 // mesh flux is exact for the rigid-body velocity u_b = U0 + omega x (x - x0).
 //

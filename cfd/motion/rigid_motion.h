@@ -1,4 +1,4 @@
-// Prescribed rigid-body motions of the captive tests (docs/lfs-formulation.md
+// Prescribed rigid-body motions of the captive tests (docs/formulation.md
 // sections 2 and 6): the pose of the body and its rates as functions of time.
 //
 // Conventions of the motion laws are those of the captive schema

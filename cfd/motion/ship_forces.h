@@ -1,4 +1,4 @@
-// Hull forces in ship axes (docs/lfs-formulation.md section 5): x forward,
+// Hull forces in ship axes (docs/formulation.md section 5): x forward,
 // y starboard, z down, the yaw moment N about the reference point (midship),
 // pressure and viscous parts kept apart, and the MMG prime system
 // (forces / (0.5 rho L T U^2), moment / (0.5 rho L^2 T U^2)).

@@ -17,7 +17,7 @@ namespace {
 // With a motion: section the mesh velocity is the rigid-body velocity of the
 // moving grid, u_b = V + Omega x (x - c), in the earth frame the patch
 // geometry is placed in each step (the kinematic condition advects eta
-// relative to the moving mesh, docs/lfs-formulation.md section 3); the
+// relative to the moving mesh, docs/formulation.md section 3); the
 // beach scales with the motion's forward speed.
 std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, const Mesh& mesh, int patch,
                                                            const RigidMeshMotion* motion) {

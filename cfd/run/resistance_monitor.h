@@ -1,5 +1,5 @@
 // The steady resistance report of a run (the `resistance:` section,
-// docs/formulation.md sections 3 and 5): per step the resistance split along
+// docs/formulation.md sections 3, 5 and 9): per step the resistance split along
 // reference.direction d (R = F . d, F the force of the water on the hull):
 // friction R_F (wall shear), pressure R_P, total R_T = R_F + R_P, and the
 // waterline correction R_WL (cfd/freesurface/wave_analysis.h), reported apart

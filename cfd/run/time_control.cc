@@ -13,6 +13,7 @@ namespace kelvin::cfd {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kReleaseScalar = "rigid_lid_release_time";
+constexpr const char* kOldReleaseScalar = "resistance_release_time";  // checkpoints of the older layout
 }  // namespace
 
 void SteadyOptions::Validate() const {
@@ -63,7 +64,9 @@ void TimeControl::Start(PimpleSolver& solver, bool restarted, const std::map<std
                         const Vector3& initial_velocity) {
   StartPhase(solver.time());
   if (restarted) {
-    if (const auto it = scalars.find(kReleaseScalar); it != scalars.end()) status_.release_time = it->second;
+    for (const char* name : {kReleaseScalar, kOldReleaseScalar}) {
+      if (const auto it = scalars.find(name); it != scalars.end()) status_.release_time = it->second;
+    }
   }
   if (free_surface_ && options_.rigid_lid_windows > 0.0) {
     if (!restarted) free_surface_->SetRigidLid(true);

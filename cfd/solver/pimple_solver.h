@@ -1,5 +1,5 @@
 // Incompressible PIMPLE solver on collocated polyhedral cells (see
-// docs/lfs-formulation.md section 4). One time step:
+// docs/formulation.md section 4). One time step:
 //   outer correctors (with under-relaxation and residual control)
 //     momentum predictor: ddt(U) + div(F - F_mesh, U) - div(nu grad U) = -grad p + s
 //     PISO correctors: Rhie-Chow flux of HbyA with the transient and

@@ -25,8 +25,9 @@
 #include <limits>
 #include <string>
 
-#include "cfd/run/run_case.h"
+#include "cfd/freesurface/linearized_free_surface.h"
 #include "cfd/mesh/box_mesh.h"
+#include "cfd/run/run_case.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "tests/cfd/cfd_test_support.h"

@@ -67,9 +67,9 @@ std::vector<Sample> RunCaseText(const std::string& yaml,
   for (Vector3& u : c.solver->U().values()) u = initial_velocity;
   const std::vector<int> hull = {c.mesh->FindPatch("obstacle")};
   std::vector<Sample> out;
-  const int steps = static_cast<int>(std::lround(c.end_time / c.dt));
+  const int steps = static_cast<int>(std::lround(c.settings.time.end / c.settings.time.dt));
   for (int i = 0; i < steps; ++i) {
-    const StepSummary s = c.solver->Step(c.dt);
+    const StepSummary s = c.solver->Step(c.settings.time.dt);
     EXPECT_TRUE(s.finite);
     if (!s.finite) break;
     const Pose pose = c.motion ? c.motion->motion().At(s.time) : Pose{};

@@ -55,9 +55,9 @@ Result RunText(const std::string& yaml, const Vector3& initial_velocity) {
   const auto root = data::ConfigNode::LoadString(yaml, "free_surface_motion_test.yaml");
   Case c = LoadCase(root, ".");
   for (Vector3& u : c.solver->U().values()) u = initial_velocity;
-  const int steps = static_cast<int>(std::lround(c.end_time / c.dt));
+  const int steps = static_cast<int>(std::lround(c.settings.time.end / c.settings.time.dt));
   for (int i = 0; i < steps; ++i) {
-    const StepSummary s = c.solver->Step(c.dt);
+    const StepSummary s = c.solver->Step(c.settings.time.dt);
     EXPECT_TRUE(s.finite);
     if (!s.finite) break;
   }

@@ -189,7 +189,7 @@ TEST(MotionCase, CampaignCaseFilesLoadAndStepOnAHullGrid) {
     Case c = LoadCase(data::ConfigNode::LoadFile(data / name), data, o);
     ASSERT_TRUE(c.motion) << name;
     EXPECT_TRUE(c.solver->turbulence() != nullptr) << name;
-    for (int i = 0; i < 2; ++i) EXPECT_TRUE(c.solver->Step(c.dt).finite) << name;
+    for (int i = 0; i < 2; ++i) EXPECT_TRUE(c.solver->Step(c.settings.time.dt).finite) << name;
   }
 }
 

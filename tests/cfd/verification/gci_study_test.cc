@@ -163,7 +163,8 @@ TEST(GciStudyTest, ExtractsNamedOutputsFromARunHistory) {
 TEST(GciStudyTest, ReusesFinishedRunsAndReportsTheGci) {
   ScopedTempDir tmp;
   WriteFamily(tmp / "grids", kH);
-  Write(tmp / "case.yaml", "mesh: {poly_mesh: grids/grid1/constant/polyMesh}\ntime: {dt: 1, end: 10}\n"
+  Write(tmp / "case.yaml", "mesh: {poly_mesh: grids/grid1/constant/polyMesh}\nphysics: {nu: 1.0e-6}\nboundary: {}\n"
+                           "time: {dt: 1, end: 10}\n"
                            "output: {directory: results}\n");
   const auto grids = ReadGridFamily(tmp / "grids", 3);
   for (const FamilyGrid& g : grids) {
@@ -225,7 +226,8 @@ TEST(GciStudyTest, ReusesFinishedRunsAndReportsTheGci) {
 TEST(GciStudyTest, CommandLine) {
   ScopedTempDir tmp;
   WriteFamily(tmp / "grids", kH);
-  Write(tmp / "case.yaml", "mesh: {poly_mesh: grids/grid1/constant/polyMesh}\ntime: {dt: 1, end: 10}\n"
+  Write(tmp / "case.yaml", "mesh: {poly_mesh: grids/grid1/constant/polyMesh}\nphysics: {nu: 1.0e-6}\nboundary: {}\n"
+                           "time: {dt: 1, end: 10}\n"
                            "output: {directory: results}\n");
   const auto grids = ReadGridFamily(tmp / "grids", 3);
   for (const FamilyGrid& g : grids) {
