@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "data/reference/friction_lines.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 
@@ -155,11 +156,6 @@ ShipParameters LoadShip(const std::filesystem::path& path) {
   return s;
 }
 
-double Ittc57FrictionCoefficient(double reynolds) {
-  const double lg = std::log10(reynolds) - 2.0;
-  return 0.075 / (lg * lg);
-}
-
 ShipParameters ScaleShip(const ShipParameters& ship, double lambda, bool friction_correction) {
   if (!(lambda > 0)) throw ModelError(fmt::format("scale factor {}: expected a positive ratio", lambda));
   ShipParameters s = ship;
@@ -189,7 +185,7 @@ ShipParameters ScaleShip(const ShipParameters& ship, double lambda, bool frictio
     const double U_from = ship.approach_speed > 0 ? ship.approach_speed : 1.0;
     const double Re_from = U_from * ship.principal.Lpp / ship.principal.nu;
     const double Re_to = U_from * sq * p.Lpp / p.nu;
-    const double dCF = Ittc57FrictionCoefficient(Re_to) - Ittc57FrictionCoefficient(Re_from);
+    const double dCF = data::Ittc57FrictionCoefficient(Re_to) - data::Ittc57FrictionCoefficient(Re_from);
     s.hull.R0 += dCF * ship.principal.wetted_area / (ship.principal.Lpp * ship.principal.d);
   }
   return s;
