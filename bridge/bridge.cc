@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "data/schema/errors.h"
+#include "simulator/maneuvers/metrics.h"
 
 namespace kelvin::bridge {
 
@@ -328,7 +329,6 @@ BridgeSummary Bridge::Run() {
         if (trigger) {
           // The ship keeps turning the old way until the yaw rate changes sign.
           overshoot_armed_ = true;
-          overshoot_trigger_ = *trigger;
           overshoot_sign_ = *trigger > controller_->start_heading() ? +1 : -1;
         }
       } else if (overshoot_armed_) {
@@ -338,7 +338,8 @@ BridgeSummary Bridge::Run() {
           // gained until then is the area under it, r_a tau / 2.
           const double tau = step_ * r_a / (r_a - r_b);
           const double psi_ext = psi_a + 0.5 * r_a * tau;
-          const double overshoot = overshoot_sign_ * (psi_ext - overshoot_trigger_);
+          const double overshoot = sim::ZigZagOvershoot(psi_ext, controller_->start_heading(),
+                                                        controller_->spec().heading, overshoot_sign_);
           ++overshoots_;
           const double t_rel = t_a + tau - controller_->start_time();
           if (overshoots_ == 1) {

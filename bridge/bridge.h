@@ -144,8 +144,7 @@ class Bridge {
   BridgeSummary summary_;
   // Zig-zag overshoot tracking between a reversal and the heading extremum.
   bool overshoot_armed_ = false;
-  int overshoot_sign_ = 0;
-  double overshoot_trigger_ = 0;
+  int overshoot_sign_ = 0;  // +1 while turning to starboard toward the extremum, -1 to port
   double first_overshoot_, second_overshoot_, first_overshoot_time_, second_overshoot_time_;
   int overshoots_ = 0;
   int executes_ = 0;
