@@ -83,7 +83,7 @@ HelmFilterOptions HelmLimits(const sim::ShipParameters& ship, HelmFilterOptions 
   helm.rudder_reject = std::max(helm.rudder_reject, helm.rudder_max);
   // Ship files rarely give a maximum propeller speed: then twice the
   // self-propulsion speed at the approach speed.
-  helm.rps_max = ship.limits.rps_max < 1e8 ? ship.limits.rps_max : 2.0 * approach_rps;
+  helm.rps_max = ship.limits.rps_max.value_or(2.0 * approach_rps);
   helm.rps_min = ship.propeller.reverse_kt ? -helm.rps_max : 0.0;
   helm.rps_reject = 2.0 * helm.rps_max;
   return helm;

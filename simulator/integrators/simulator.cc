@@ -157,8 +157,9 @@ void Simulator::SetRudderOrder(double delta_order) {
 
 void Simulator::SetRpsOrder(double n_order) {
   const auto& ship = plant_->ship();
-  const double lo = ship.propeller.reverse_kt ? -ship.limits.rps_max : 0.0;
-  const double order = std::clamp(n_order, lo, ship.limits.rps_max);
+  const double hi = ship.limits.rps_max.value_or(std::numeric_limits<double>::infinity());
+  const double lo = ship.propeller.reverse_kt ? -hi : 0.0;
+  const double order = std::clamp(n_order, lo, hi);
   if (order == rps_.order() && rps_.PositionAt(t_) == order) return;
   rps_.SetOrder(t_, order);
   Restart();

@@ -145,7 +145,7 @@ ShipParameters LoadShip(const std::filesystem::path& path) {
     a->ExpectKeys({"rudder_max_deg", "rudder_rate_deg_s", "rps_max", "rps_rate"});
     s.limits.rudder_max = a->Get<double>("rudder_max_deg", 35.0) * kDeg;
     s.limits.rudder_rate = a->Get<double>("rudder_rate_deg_s", 2.34) * kDeg;
-    s.limits.rps_max = a->Get<double>("rps_max", 1e9);
+    if (auto rps_max = a->Find("rps_max")) s.limits.rps_max = rps_max->As<double>();
     s.limits.rps_rate = a->Get<double>("rps_rate", 0.0);
   }
   if (auto c = root.Find("conditions")) {
@@ -171,7 +171,7 @@ ShipParameters ScaleShip(const ShipParameters& ship, double lambda, bool frictio
   s.rudder.A_R *= lambda * lambda;
   s.rudder.H_R *= lambda;
   s.limits.rudder_rate /= sq;
-  s.limits.rps_max /= sq;
+  if (s.limits.rps_max) *s.limits.rps_max /= sq;
   s.limits.rps_rate /= lambda;
   s.approach_speed *= sq;
   s.scale = ship.scale / lambda;

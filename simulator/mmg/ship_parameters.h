@@ -94,7 +94,7 @@ struct RudderParameters {
 struct ActuatorLimits {
   double rudder_max = 35.0 * 3.14159265358979323846 / 180.0;  // rad
   double rudder_rate = 2.34 * 3.14159265358979323846 / 180.0;  // rad/s
-  double rps_max = 1e9;                                         // 1/s
+  std::optional<double> rps_max;                                // 1/s; empty: no limit
   double rps_rate = 0;  // 1/s^2, 0 = instantaneous
 };
 

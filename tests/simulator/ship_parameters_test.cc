@@ -98,6 +98,18 @@ TEST(ShipParametersTest, FroudeScalingKeepsNondimensionalManeuvers) {
   EXPECT_NEAR(a.turning->time_to_90 * std::sqrt(model.scale), b.turning->time_to_90, 1e-4 * b.turning->time_to_90);
 }
 
+TEST(ShipParametersTest, RpsMaxIsAbsentUnlessGivenAndScalesWithFroude) {
+  const ScopedTempDir dir;
+  const ShipParameters plain = testing::Kvlcc2();
+  EXPECT_FALSE(plain.limits.rps_max.has_value());
+  EXPECT_FALSE(ScaleShip(plain, 4.0, false).limits.rps_max.has_value());
+  const ShipParameters limited =
+      LoadShip(Modified(dir, "  rudder_rate_deg_s: 15.8", "  rudder_rate_deg_s: 15.8\n  rps_max: 20.0"));
+  ASSERT_TRUE(limited.limits.rps_max.has_value());
+  EXPECT_EQ(*limited.limits.rps_max, 20.0);
+  EXPECT_DOUBLE_EQ(*ScaleShip(limited, 4.0, false).limits.rps_max, 10.0);  // n / sqrt(lambda)
+}
+
 TEST(ShipParametersTest, FrictionCorrectionNeedsWettedAreaAndLowersR0) {
   ShipParameters model = testing::Kvlcc2();
   try {
