@@ -92,8 +92,7 @@ HelmFilterOptions HelmLimits(const sim::ShipParameters& ship, HelmFilterOptions 
 }  // namespace
 
 Bridge::Bridge(const sim::ShipParameters& ship, const BridgeOptions& options, lcm::LCM& lcm)
-    : ship_(ship),
-      options_((options.Validate(), options)),
+    : options_((options.Validate(), options)),
       lcm_(lcm),
       model_(std::make_unique<sim::MmgModel<double>>(ship)),
       approach_speed_(options.approach_speed > 0 ? options.approach_speed : ship.approach_speed),
@@ -127,7 +126,7 @@ Bridge::Bridge(const sim::ShipParameters& ship, const BridgeOptions& options, lc
   sim_ = std::make_unique<sim::Simulator>(*model_, so);
   sim_->Reset(0.0, {0, 0, 0, approach_speed_, 0, 0}, 0.0, approach_rps_);
   if (const auto spec = ParseScript(options_.script)) {
-    controller_ = std::make_unique<sim::ManeuverController>(*spec, ship_, approach_speed_, approach_rps_);
+    controller_ = std::make_unique<sim::ManeuverController>(*spec, model_->ship(), approach_speed_, approach_rps_);
   }
 
   state_channel_ = options_.channel_prefix + "_STATE";

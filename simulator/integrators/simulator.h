@@ -33,8 +33,10 @@ struct SimulatorOptions {
 
 class Simulator {
  public:
-  // Integrates the MMG model (the usual case).
+  // Integrates the MMG model (the usual case). Refers to `model`, which must
+  // outlive the simulator.
   Simulator(const MmgModel<double>& model, const SimulatorOptions& options);
+  Simulator(const MmgModel<double>&& model, const SimulatorOptions& options) = delete;  // would dangle
   // Integrates any plant (e.g. a LinearPlant in tests).
   Simulator(std::unique_ptr<const Plant> plant, const SimulatorOptions& options);
   ~Simulator();
