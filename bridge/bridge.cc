@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "data/schema/errors.h"
+#include "simulator/maneuvers/metrics.h"
 
 namespace kelvin::bridge {
 
@@ -82,7 +83,7 @@ HelmFilterOptions HelmLimits(const sim::ShipParameters& ship, HelmFilterOptions 
   helm.rudder_reject = std::max(helm.rudder_reject, helm.rudder_max);
   // Ship files rarely give a maximum propeller speed: then twice the
   // self-propulsion speed at the approach speed.
-  helm.rps_max = ship.limits.rps_max < 1e8 ? ship.limits.rps_max : 2.0 * approach_rps;
+  helm.rps_max = ship.limits.rps_max.value_or(2.0 * approach_rps);
   helm.rps_min = ship.propeller.reverse_kt ? -helm.rps_max : 0.0;
   helm.rps_reject = 2.0 * helm.rps_max;
   return helm;
@@ -91,8 +92,7 @@ HelmFilterOptions HelmLimits(const sim::ShipParameters& ship, HelmFilterOptions 
 }  // namespace
 
 Bridge::Bridge(const sim::ShipParameters& ship, const BridgeOptions& options, lcm::LCM& lcm)
-    : ship_(ship),
-      options_((options.Validate(), options)),
+    : options_((options.Validate(), options)),
       lcm_(lcm),
       model_(std::make_unique<sim::MmgModel<double>>(ship)),
       approach_speed_(options.approach_speed > 0 ? options.approach_speed : ship.approach_speed),
@@ -126,7 +126,7 @@ Bridge::Bridge(const sim::ShipParameters& ship, const BridgeOptions& options, lc
   sim_ = std::make_unique<sim::Simulator>(*model_, so);
   sim_->Reset(0.0, {0, 0, 0, approach_speed_, 0, 0}, 0.0, approach_rps_);
   if (const auto spec = ParseScript(options_.script)) {
-    controller_ = std::make_unique<sim::ManeuverController>(*spec, ship_, approach_speed_, approach_rps_);
+    controller_ = std::make_unique<sim::ManeuverController>(*spec, model_->ship(), approach_speed_, approach_rps_);
   }
 
   state_channel_ = options_.channel_prefix + "_STATE";
@@ -328,7 +328,6 @@ BridgeSummary Bridge::Run() {
         if (trigger) {
           // The ship keeps turning the old way until the yaw rate changes sign.
           overshoot_armed_ = true;
-          overshoot_trigger_ = *trigger;
           overshoot_sign_ = *trigger > controller_->start_heading() ? +1 : -1;
         }
       } else if (overshoot_armed_) {
@@ -338,7 +337,8 @@ BridgeSummary Bridge::Run() {
           // gained until then is the area under it, r_a tau / 2.
           const double tau = step_ * r_a / (r_a - r_b);
           const double psi_ext = psi_a + 0.5 * r_a * tau;
-          const double overshoot = overshoot_sign_ * (psi_ext - overshoot_trigger_);
+          const double overshoot = sim::ZigZagOvershoot(psi_ext, controller_->start_heading(),
+                                                        controller_->spec().heading, overshoot_sign_);
           ++overshoots_;
           const double t_rel = t_a + tau - controller_->start_time();
           if (overshoots_ == 1) {

@@ -76,8 +76,9 @@ struct BridgeSummary {
 class Bridge {
  public:
   // `lcm` must be good and outlive the bridge (tests share a memq:// instance
-  // between the bridge and their subscribers). Throws kelvin::ArgumentError
-  // for bad options or a bad script, kelvin::InputError for an LCM failure.
+  // between the bridge and their subscribers); `ship` is copied into the
+  // bridge's model. Throws kelvin::ArgumentError for bad options or a bad
+  // script, kelvin::InputError for an LCM failure.
   Bridge(const sim::ShipParameters& ship, const BridgeOptions& options, lcm::LCM& lcm);
   ~Bridge();
   Bridge(const Bridge&) = delete;
@@ -117,9 +118,9 @@ class Bridge {
   // log_interval unless forced (at the end of the run).
   void LogHelmProblems(std::int64_t now_ns, bool force);
 
-  sim::ShipParameters ship_;
   BridgeOptions options_;
   lcm::LCM& lcm_;
+  // Owns the ship parameters (model_->ship()); sim_, declared after it, refers to it.
   std::unique_ptr<sim::MmgModel<double>> model_;
   double approach_speed_ = 0;
   double approach_rps_ = 0;
@@ -144,8 +145,7 @@ class Bridge {
   BridgeSummary summary_;
   // Zig-zag overshoot tracking between a reversal and the heading extremum.
   bool overshoot_armed_ = false;
-  int overshoot_sign_ = 0;
-  double overshoot_trigger_ = 0;
+  int overshoot_sign_ = 0;  // +1 while turning to starboard toward the extremum, -1 to port
   double first_overshoot_, second_overshoot_, first_overshoot_time_, second_overshoot_time_;
   int overshoots_ = 0;
   int executes_ = 0;

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "data/schema/errors.h"
+#include "simulator/integrators/actuators.h"
 
 namespace kelvin::bridge {
 
@@ -101,7 +102,7 @@ HelmVerdict HelmFilter::Check(const kelvin::helm_command_t& c, std::int64_t now_
       std::find(options_.sources.begin(), options_.sources.end(), c.source_id) == options_.sources.end()) {
     return Reject(HelmVerdict::kUnknownSource, c, "source_id is not in the accepted sources");
   }
-  const double rudder = std::clamp(c.rudder_order, -options_.rudder_max, options_.rudder_max);
+  const double rudder = sim::ClampRudderAngle(c.rudder_order, options_.rudder_max);
   const double rps = std::clamp(c.rps_order, options_.rps_min, options_.rps_max);
   ++counters_.accepted;
   rudder_order_ = rudder;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "data/reference/friction_lines.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -125,17 +126,12 @@ std::vector<double> TwoSidedNodes(int n, double length, double h0, double h1) {
   return s;
 }
 
-double Ittc57Friction(double reynolds) {
-  const double lg = std::log10(reynolds) - 2.0;
-  return 0.075 / (lg * lg);
-}
-
 double FirstCellHeight(double y_plus, double reynolds, double length) {
-  return 2.0 * y_plus * length / (reynolds * std::sqrt(0.5 * Ittc57Friction(reynolds)));
+  return 2.0 * y_plus * length / (reynolds * std::sqrt(0.5 * data::Ittc57FrictionCoefficient(reynolds)));
 }
 
 double YPlusAt(double wall_distance, double reynolds, double length) {
-  return wall_distance * reynolds * std::sqrt(0.5 * Ittc57Friction(reynolds)) / length;
+  return wall_distance * reynolds * std::sqrt(0.5 * data::Ittc57FrictionCoefficient(reynolds)) / length;
 }
 
 }  // namespace kelvin::cfd

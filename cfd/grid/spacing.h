@@ -30,13 +30,11 @@ double GeometricRatio(int n, double length, double h1);
 // would not stay positive (h0 + h1 much larger than 2 length / n).
 std::vector<double> TwoSidedNodes(int n, double length, double h0, double h1);
 
-// ITTC-57 model-ship correlation line C_F = 0.075 / (log10 Re - 2)^2.
-double Ittc57Friction(double reynolds);
-
 // First wall-normal cell height (m) that puts the first cell centre at
 // `y_plus`: the wall shear velocity is u_tau = U sqrt(C_F / 2) with the
-// ITTC-57 C_F at Re = U L / nu, and the first cell centre sits at half the
-// height, so h = 2 y+ nu / u_tau = 2 y+ L / (Re sqrt(C_F / 2)).
+// ITTC-57 C_F at Re = U L / nu (data::Ittc57FrictionCoefficient, which
+// throws kelvin::ModelError for Re <= 100), and the first cell centre sits
+// at half the height, so h = 2 y+ nu / u_tau = 2 y+ L / (Re sqrt(C_F / 2)).
 double FirstCellHeight(double y_plus, double reynolds, double length);
 
 // y+ of a first cell centre at wall distance y, with the same estimate.

@@ -15,11 +15,6 @@
 
 namespace kelvin::cfd {
 
-double IttcFrictionLine(double re) {
-  const double l = std::log10(re) - 2.0;
-  return 0.075 / (l * l);
-}
-
 double SchoenherrFrictionLine(double re) {
   // f(C) = 0.242 / sqrt(C) - log10(Re C) decreases in C: bisection.
   double lo = 1e-5, hi = 0.1;

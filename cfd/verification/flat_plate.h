@@ -98,8 +98,8 @@ struct FlatPlateResult {
 // with one outer corrector, SST corrected every step).
 FlatPlateResult RunFlatPlate(const FlatPlateOptions& options, const FlatPlateRunOptions& run);
 
-// Reference lines for the plate.
-double IttcFrictionLine(double reynolds);      // 0.075 / (log10 Re - 2)^2
+// Reference lines for the plate (the ITTC-1957 line is
+// data::Ittc57FrictionCoefficient, shared with the simulator).
 double SchoenherrFrictionLine(double reynolds);  // 0.242 / sqrt(C_F) = log10(Re C_F)
 double PrandtlSchlichtingLocal(double reynolds_x);  // c_f = (2 log10 Re_x - 0.65)^-2.3
 

@@ -1,12 +1,19 @@
 // Rudder and propeller actuators: each moves from its current position toward
 // its order at a limited rate, so its position is piecewise linear in time.
 // The integrators evaluate the position analytically and stop exactly where a
-// ramp ends (a kink of the right-hand side).
+// ramp ends (a kink of the right-hand side). Also the rudder angle limit that
+// the simulator and the bridge's helm filter both apply.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 
 namespace kelvin::sim {
+
+// A rudder angle or order (rad) limited to [-rudder_max, rudder_max].
+inline double ClampRudderAngle(double delta, double rudder_max) {
+  return std::clamp(delta, -rudder_max, rudder_max);
+}
 
 class RateLimitedActuator {
  public:

@@ -19,17 +19,20 @@ class Plant {
   virtual const ShipParameters& ship() const = 0;
 };
 
+// The MMG model as a plant, by reference: `model` (which owns the ship
+// parameters) must outlive the plant.
 class MmgPlant final : public Plant {
  public:
-  explicit MmgPlant(const MmgModel<double>& model) : model_(model) {}
+  explicit MmgPlant(const MmgModel<double>& model) : model_(&model) {}
+  explicit MmgPlant(const MmgModel<double>&& model) = delete;  // would dangle
   void Derivative(const double* y, double delta, double n, double* ydot) const override {
-    model_.Derivative(y, delta, n, ydot);
+    model_->Derivative(y, delta, n, ydot);
   }
-  const ShipParameters& ship() const override { return model_.ship(); }
-  const MmgModel<double>& model() const { return model_; }
+  const ShipParameters& ship() const override { return model_->ship(); }
+  const MmgModel<double>& model() const { return *model_; }
 
  private:
-  MmgModel<double> model_;
+  const MmgModel<double>* model_;
 };
 
 using StateMatrix = Eigen::Matrix<double, kStateSize, kStateSize>;
@@ -54,7 +57,7 @@ class LinearPlant final : public Plant {
   double n0() const { return n0_; }
 
  private:
-  ShipParameters ship_;
+  ShipParameters ship_;  // a copy: the linearization is a value that outlives the model it came from
   StateMatrix A_ = StateMatrix::Zero();
   InputMatrix B_ = InputMatrix::Zero();
   StateVec f0_ = StateVec::Zero();

@@ -97,8 +97,7 @@ void Simulator::Rhs(double t, const double* y, double* ydot) const {
 void Simulator::Reset(double t0, const StateVector& state, double delta, double n) {
   t_ = t0;
   y_ = state;
-  const double dmax = plant_->ship().limits.rudder_max;
-  rudder_.Reset(t0, std::clamp(delta, -dmax, dmax));
+  rudder_.Reset(t0, ClampRudderAngle(delta, plant_->ship().limits.rudder_max));
   rps_.Reset(t0, n);
   double* yd = N_VGetArrayPointer(sun_->y);
   for (int i = 0; i < kStateSize; ++i) yd[i] = y_[i];
@@ -150,8 +149,7 @@ void Simulator::Restart() {
 }
 
 void Simulator::SetRudderOrder(double delta_order) {
-  const double dmax = plant_->ship().limits.rudder_max;
-  const double order = std::clamp(delta_order, -dmax, dmax);
+  const double order = ClampRudderAngle(delta_order, plant_->ship().limits.rudder_max);
   if (order == rudder_.order() && rudder_.PositionAt(t_) == order) return;
   rudder_.SetOrder(t_, order);
   Restart();
@@ -159,8 +157,9 @@ void Simulator::SetRudderOrder(double delta_order) {
 
 void Simulator::SetRpsOrder(double n_order) {
   const auto& ship = plant_->ship();
-  const double lo = ship.propeller.reverse_kt ? -ship.limits.rps_max : 0.0;
-  const double order = std::clamp(n_order, lo, ship.limits.rps_max);
+  const double hi = ship.limits.rps_max.value_or(std::numeric_limits<double>::infinity());
+  const double lo = ship.propeller.reverse_kt ? -hi : 0.0;
+  const double order = std::clamp(n_order, lo, hi);
   if (order == rps_.order() && rps_.PositionAt(t_) == order) return;
   rps_.SetOrder(t_, order);
   Restart();

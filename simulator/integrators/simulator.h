@@ -33,8 +33,10 @@ struct SimulatorOptions {
 
 class Simulator {
  public:
-  // Integrates the MMG model (the usual case).
+  // Integrates the MMG model (the usual case). Refers to `model`, which must
+  // outlive the simulator.
   Simulator(const MmgModel<double>& model, const SimulatorOptions& options);
+  Simulator(const MmgModel<double>&& model, const SimulatorOptions& options) = delete;  // would dangle
   // Integrates any plant (e.g. a LinearPlant in tests).
   Simulator(std::unique_ptr<const Plant> plant, const SimulatorOptions& options);
   ~Simulator();
@@ -45,7 +47,8 @@ class Simulator {
   void Reset(double t0, const StateVector& state, double delta, double n);
 
   // Orders take effect from the current time; the rudder order is clamped to
-  // the ship's maximum angle and the rps order to [0 or reverse, rps_max].
+  // the ship's maximum angle and the rps order to [0, rps_max], or [-rps_max,
+  // rps_max] with reverse thrust (rps_max = infinity when the ship gives none).
   void SetRudderOrder(double delta_order);
   void SetRpsOrder(double n_order);
 

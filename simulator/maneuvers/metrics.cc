@@ -58,19 +58,23 @@ ZigZagMetrics ComputeZigZag(const Trajectory& traj, const std::vector<double>& e
   if (executes.size() > 1) {
     const double te = traj.FirstCrossing(executes[1], 0.0, &TrajectorySample::r, -side);
     if (te > 0) {
-      z.first_overshoot = side * (traj.At(te).psi - psi0) - trigger_heading;
+      z.first_overshoot = ZigZagOvershoot(traj.At(te).psi, psi0, trigger_heading, side);
       z.first_overshoot_time = te - t0;
     }
   }
   if (executes.size() > 2) {
     const double te = traj.FirstCrossing(executes[2], 0.0, &TrajectorySample::r, side);
     if (te > 0) {
-      z.second_overshoot = -side * (traj.At(te).psi - psi0) - trigger_heading;
+      z.second_overshoot = ZigZagOvershoot(traj.At(te).psi, psi0, trigger_heading, -side);
       z.second_overshoot_time = te - t0;
     }
   }
   if (executes.size() > 3) z.period = executes[3] - executes[1];
   return z;
+}
+
+double ZigZagOvershoot(double psi_extremum, double psi0, double trigger_heading, int sign) {
+  return sign * (psi_extremum - psi0) - trigger_heading;
 }
 
 std::vector<SpiralPoint> ComputeSpiral(const Trajectory& traj, const std::vector<double>& executes,

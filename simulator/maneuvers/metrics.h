@@ -70,6 +70,13 @@ std::vector<SpiralPoint> ComputeSpiral(const Trajectory& traj, const std::vector
                                        const std::vector<double>& rudders, double t_end, double Lpp);
 StoppingMetrics ComputeStopping(const Trajectory& traj, double t0, double psi0);
 
+// The zig-zag overshoot angle (rad) at a heading extremum psi_extremum: how far
+// the heading went past the trigger heading change `trigger_heading` (> 0)
+// from the initial heading psi0, with `sign` = +1 while the ship was turning
+// to starboard and -1 to port. ComputeZigZag reads it off a trajectory; the
+// bridge applies it to the extremum it finds while stepping.
+double ZigZagOvershoot(double psi_extremum, double psi0, double trigger_heading, int sign);
+
 // IMO MSC.137(76) limits. L/V is taken at full scale (L/V scales with the
 // square root of the geometric scale), since the criteria are written for
 // ships.

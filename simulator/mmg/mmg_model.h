@@ -206,6 +206,8 @@ class MmgModel {
  private:
   double MassScale() const { return 0.5 * ship_.principal.rho * ship_.principal.Lpp * ship_.principal.Lpp * ship_.principal.d; }
 
+  // The one owned copy (a Simulator and the Bridge refer to their model's): models
+  // are built from temporary parameter sets (LoadShip(), identification's HullShipFrom()).
   ShipParameters ship_;
   HullCoefficients<T> hull_;
 };

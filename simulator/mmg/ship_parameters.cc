@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "data/reference/friction_lines.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 
@@ -144,7 +145,7 @@ ShipParameters LoadShip(const std::filesystem::path& path) {
     a->ExpectKeys({"rudder_max_deg", "rudder_rate_deg_s", "rps_max", "rps_rate"});
     s.limits.rudder_max = a->Get<double>("rudder_max_deg", 35.0) * kDeg;
     s.limits.rudder_rate = a->Get<double>("rudder_rate_deg_s", 2.34) * kDeg;
-    s.limits.rps_max = a->Get<double>("rps_max", 1e9);
+    if (auto rps_max = a->Find("rps_max")) s.limits.rps_max = rps_max->As<double>();
     s.limits.rps_rate = a->Get<double>("rps_rate", 0.0);
   }
   if (auto c = root.Find("conditions")) {
@@ -153,11 +154,6 @@ ShipParameters LoadShip(const std::filesystem::path& path) {
   }
   s.Validate(path.string());
   return s;
-}
-
-double Ittc57FrictionCoefficient(double reynolds) {
-  const double lg = std::log10(reynolds) - 2.0;
-  return 0.075 / (lg * lg);
 }
 
 ShipParameters ScaleShip(const ShipParameters& ship, double lambda, bool friction_correction) {
@@ -175,7 +171,7 @@ ShipParameters ScaleShip(const ShipParameters& ship, double lambda, bool frictio
   s.rudder.A_R *= lambda * lambda;
   s.rudder.H_R *= lambda;
   s.limits.rudder_rate /= sq;
-  s.limits.rps_max /= sq;
+  if (s.limits.rps_max) *s.limits.rps_max /= sq;
   s.limits.rps_rate /= lambda;
   s.approach_speed *= sq;
   s.scale = ship.scale / lambda;
@@ -189,7 +185,7 @@ ShipParameters ScaleShip(const ShipParameters& ship, double lambda, bool frictio
     const double U_from = ship.approach_speed > 0 ? ship.approach_speed : 1.0;
     const double Re_from = U_from * ship.principal.Lpp / ship.principal.nu;
     const double Re_to = U_from * sq * p.Lpp / p.nu;
-    const double dCF = Ittc57FrictionCoefficient(Re_to) - Ittc57FrictionCoefficient(Re_from);
+    const double dCF = data::Ittc57FrictionCoefficient(Re_to) - data::Ittc57FrictionCoefficient(Re_from);
     s.hull.R0 += dCF * ship.principal.wetted_area / (ship.principal.Lpp * ship.principal.d);
   }
   return s;

@@ -94,7 +94,7 @@ struct RudderParameters {
 struct ActuatorLimits {
   double rudder_max = 35.0 * 3.14159265358979323846 / 180.0;  // rad
   double rudder_rate = 2.34 * 3.14159265358979323846 / 180.0;  // rad/s
-  double rps_max = 1e9;                                         // 1/s
+  std::optional<double> rps_max;                                // 1/s; empty: no limit
   double rps_rate = 0;  // 1/s^2, 0 = instantaneous
 };
 
@@ -124,11 +124,8 @@ ShipParameters LoadShip(const std::filesystem::path& path);
 // The same nondimensional model at another geometric scale (Froude scaling):
 // lengths x lambda, areas x lambda^2, volume x lambda^3, speeds x sqrt(lambda),
 // rudder rate / sqrt(lambda). With `friction_correction`, R0' is corrected by
-// the ITTC-1957 friction line difference (C_F(Re_to) - C_F(Re_from)) S / (L d),
-// which needs the wetted area.
+// the ITTC-1957 friction line difference (C_F(Re_to) - C_F(Re_from)) S / (L d)
+// (data::Ittc57FrictionCoefficient), which needs the wetted area.
 ShipParameters ScaleShip(const ShipParameters& ship, double lambda, bool friction_correction);
-
-// ITTC-1957 model-ship correlation line.
-double Ittc57FrictionCoefficient(double reynolds);
 
 }  // namespace kelvin::sim

@@ -77,6 +77,14 @@ TEST(MetricsTest, SinusoidalZigZag) {
   EXPECT_NEAR(z.reach_at_10deg, U * std::asin(10 * kDeg / A) / w, 1e-6);
 }
 
+TEST(MetricsTest, ZigZagOvershootIsTheHeadingBeyondTheTriggerOnEitherSide) {
+  // From psi0 = 1 rad with a 20 deg trigger: 25 deg to starboard and 25 deg
+  // to port are both 5 deg overshoots; an extremum short of the trigger is negative.
+  EXPECT_NEAR(ZigZagOvershoot(1.0 + 25 * kDeg, 1.0, 20 * kDeg, +1), 5 * kDeg, 1e-15);
+  EXPECT_NEAR(ZigZagOvershoot(1.0 - 25 * kDeg, 1.0, 20 * kDeg, -1), 5 * kDeg, 1e-15);
+  EXPECT_NEAR(ZigZagOvershoot(1.0 + 15 * kDeg, 1.0, 20 * kDeg, +1), -5 * kDeg, 1e-15);
+}
+
 TEST(MetricsTest, StoppingOnUniformDeceleration) {
   // u = U0 - a t on a straight course: stops at U0/a after U0^2 / (2a).
   const double U0 = 3.0, a = 0.05;

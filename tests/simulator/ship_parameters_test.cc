@@ -10,6 +10,7 @@
 #include <regex>
 #include <sstream>
 
+#include "data/reference/friction_lines.h"
 #include "simulator/maneuvers/runner.h"
 #include "tests/simulator/simulator_test_utilities.h"
 
@@ -97,6 +98,18 @@ TEST(ShipParametersTest, FroudeScalingKeepsNondimensionalManeuvers) {
   EXPECT_NEAR(a.turning->time_to_90 * std::sqrt(model.scale), b.turning->time_to_90, 1e-4 * b.turning->time_to_90);
 }
 
+TEST(ShipParametersTest, RpsMaxIsAbsentUnlessGivenAndScalesWithFroude) {
+  const ScopedTempDir dir;
+  const ShipParameters plain = testing::Kvlcc2();
+  EXPECT_FALSE(plain.limits.rps_max.has_value());
+  EXPECT_FALSE(ScaleShip(plain, 4.0, false).limits.rps_max.has_value());
+  const ShipParameters limited =
+      LoadShip(Modified(dir, "  rudder_rate_deg_s: 15.8", "  rudder_rate_deg_s: 15.8\n  rps_max: 20.0"));
+  ASSERT_TRUE(limited.limits.rps_max.has_value());
+  EXPECT_EQ(*limited.limits.rps_max, 20.0);
+  EXPECT_DOUBLE_EQ(*ScaleShip(limited, 4.0, false).limits.rps_max, 10.0);  // n / sqrt(lambda)
+}
+
 TEST(ShipParametersTest, FrictionCorrectionNeedsWettedAreaAndLowersR0) {
   ShipParameters model = testing::Kvlcc2();
   try {
@@ -112,13 +125,9 @@ TEST(ShipParametersTest, FrictionCorrectionNeedsWettedAreaAndLowersR0) {
   const double Re_m = 1.179 * 7.0 / model.principal.nu;
   const double Re_s = Re_m * std::pow(model.scale, 1.5);
   const double expected =
-      (Ittc57FrictionCoefficient(Re_s) - Ittc57FrictionCoefficient(Re_m)) * model.principal.wetted_area / (7.0 * 0.46);
+      (data::Ittc57FrictionCoefficient(Re_s) - data::Ittc57FrictionCoefficient(Re_m)) * model.principal.wetted_area /
+      (7.0 * 0.46);
   EXPECT_NEAR(full.hull.R0 - model.hull.R0, expected, 1e-12);
-}
-
-TEST(Ittc57Test, KnownValue) {
-  // 0.075 / (log10(1e7) - 2)^2 = 0.075 / 25
-  EXPECT_NEAR(Ittc57FrictionCoefficient(1e7), 0.003, 1e-15);
 }
 
 }  // namespace

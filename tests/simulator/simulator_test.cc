@@ -95,6 +95,29 @@ TEST(SimulatorTest, RudderMovesAtItsRateAndCvodeStopsAtTheKink) {
   EXPECT_DOUBLE_EQ(sim.rudder_order(), ship.limits.rudder_max);
 }
 
+TEST(SimulatorTest, RpsOrderIsClampedToRpsMaxOnlyWhenTheShipGivesOne) {
+  ShipParameters ship = testing::Kvlcc2();
+  ASSERT_FALSE(ship.limits.rps_max.has_value());
+  {
+    const MmgModel<double> model(ship);
+    Simulator sim(model, {});
+    sim.Reset(0.0, {0, 0, 0, 1.179, 0, 0}, 0.0, 11.85);
+    sim.SetRpsOrder(1e6);
+    EXPECT_EQ(sim.rps_order(), 1e6);
+    sim.SetRpsOrder(-5.0);  // no reverse thrust data: not below 0
+    EXPECT_EQ(sim.rps_order(), 0.0);
+  }
+  ship.limits.rps_max = 15.0;
+  ship.propeller.reverse_kt = std::array<double, 3>{-0.35, -0.3, 0.0};
+  const MmgModel<double> model(ship);
+  Simulator sim(model, {});
+  sim.Reset(0.0, {0, 0, 0, 1.179, 0, 0}, 0.0, 11.85);
+  sim.SetRpsOrder(20.0);
+  EXPECT_EQ(sim.rps_order(), 15.0);
+  sim.SetRpsOrder(-20.0);
+  EXPECT_EQ(sim.rps_order(), -15.0);
+}
+
 TEST(SimulatorTest, HeadingEventIsLocatedByRootFinding) {
   const MmgModel<double> model(testing::Kvlcc2());
   Simulator sim(model, {});

@@ -19,6 +19,7 @@
 
 #include "cfd/grid/mesh_writer.h"
 #include "cfd/verification/flat_plate.h"
+#include "data/reference/friction_lines.h"
 
 int main(int argc, char** argv) {
   using namespace kelvin::cfd;
@@ -53,7 +54,8 @@ int main(int argc, char** argv) {
   try {
     if (!poly_mesh_dir.empty()) WritePolyMesh(MakeFlatPlateMesh(o), poly_mesh_dir);
     const FlatPlateResult res = RunFlatPlate(o, r);
-    const double ittc = IttcFrictionLine(o.reynolds), sch = SchoenherrFrictionLine(o.reynolds);
+    const double ittc = kelvin::data::Ittc57FrictionCoefficient(o.reynolds);
+    const double sch = SchoenherrFrictionLine(o.reynolds);
     fmt::print(
         "Re_L {:.3g} y+ target {:g}: C_F {:.5e} (ITTC-57 {:+.2f}%, Schoenherr {:+.2f}%), converged {} after {} steps "
         "(change {:.1e}), {} cells, h {:.4g} m, {:.4f} s/step, plate y+ min/mean/max {:.1f}/{:.1f}/{:.1f}, bounded {}\n",

@@ -99,9 +99,9 @@ TEST(SpacingTest, TwoSidedNodesAreMonotoneWithTheEndSpacingsToFirstOrder) {
 }
 
 TEST(SpacingTest, Ittc57AndTheFirstCellHeight) {
-  // log10(1e7) - 2 = 5 exactly.
-  EXPECT_DOUBLE_EQ(Ittc57Friction(1e7), 0.075 / 25.0);
-  // h = 2 y+ L / (Re sqrt(C_F/2)): the cell centre at h/2 has the target y+.
+  // h = 2 y+ L / (Re sqrt(C_F/2)) with the ITTC-57 C_F(1e7) = 0.075 / 25 =
+  // 0.003 (log10(1e7) - 2 = 5 exactly): the cell centre at h/2 has the
+  // target y+.
   const double h = FirstCellHeight(30.0, 1e7, 2.0);
   EXPECT_NEAR(h, 2 * 30.0 * 2.0 / (1e7 * std::sqrt(0.0015)), 1e-15);
   EXPECT_NEAR(YPlusAt(0.5 * h, 1e7, 2.0), 30.0, 1e-12);

@@ -45,6 +45,7 @@
 #include "cfd/grid/mesh_case.h"
 #include "cfd/run/run_case.h"
 #include "cfd/verification/flat_plate.h"
+#include "data/reference/friction_lines.h"
 #include "data/schema/h5_file.h"
 #include "tests/test_utilities/test_utilities.h"
 
@@ -90,7 +91,7 @@ DoubleBody RunDoubleBody(const fs::path& poly_mesh, const fs::path& out,
   r.y_plus_mean = yp.at(yp.rows - 1, 1);
   r.settled = s.steady_converged;
   r.steps = s.steps;
-  const double c_f0 = IttcFrictionLine(reynolds);
+  const double c_f0 = data::Ittc57FrictionCoefficient(reynolds);
   std::printf(
       "%s, %d steps (settled %d): C_F %.4e (C_F/C_F0 %.3f), C_P %.3e, C_V %.4e, "
       "C_V/((1+k) C_F0) %.3f, y+ mean %.1f, |Y|/|X| %.1e\n",
@@ -110,7 +111,7 @@ TEST(DoubleBodyTest, WigleyFineGrid) {
   if (!std::getenv("KELVIN_DOUBLEBODY_SLOW")) GTEST_SKIP() << "ctest label slow (KELVIN_DOUBLEBODY_SLOW=1)";
   ScopedTempDir tmp;
   const DoubleBody r = RunGrid(tmp, 1);
-  const double c_v_ref = kFormFactor * IttcFrictionLine(kReynolds);
+  const double c_v_ref = kFormFactor * data::Ittc57FrictionCoefficient(kReynolds);
   EXPECT_TRUE(r.settled);
   EXPECT_NEAR(r.C_T, c_v_ref, 0.05 * c_v_ref);
   EXPECT_GT(r.C_P, 0.0);
@@ -127,7 +128,7 @@ TEST(DoubleBodyTest, DtcGrid1) {
   RunMeshCase(mc, 1, tmp / "grid");
   const DoubleBody r = RunDoubleBody(tmp / "grid/constant/polyMesh", tmp / "run",
                                      "data/cases/doublebody/dtc.yaml", kDtcFormFactor, kDtcReynolds);
-  const double c_v_ref = kDtcFormFactor * IttcFrictionLine(kDtcReynolds);
+  const double c_v_ref = kDtcFormFactor * data::Ittc57FrictionCoefficient(kDtcReynolds);
   EXPECT_TRUE(r.settled);
   EXPECT_NEAR(r.C_T, c_v_ref, 0.05 * c_v_ref);
   EXPECT_GT(r.C_P, 0.0);
@@ -137,7 +138,7 @@ TEST(DoubleBodyTest, DtcGrid1) {
 TEST(DoubleBodyTest, WigleyCoarseGrid) {
   ScopedTempDir tmp;
   const DoubleBody r = RunGrid(tmp, 3);
-  const double c_v_ref = kFormFactor * IttcFrictionLine(kReynolds);
+  const double c_v_ref = kFormFactor * data::Ittc57FrictionCoefficient(kReynolds);
   EXPECT_TRUE(r.settled);
   EXPECT_NEAR(r.C_T, c_v_ref, 0.10 * c_v_ref);
   EXPECT_GT(r.C_P, 0.0);
