@@ -38,35 +38,102 @@ void ResistanceMonitor::AfterStep(const PimpleSolver& solver, const StepRecord& 
     rwl = WaterlineForce(free_surface_->surface(), free_surface_->eta(), hull_, rho_, g_).dot(reference_.direction);
   }
   steady_ = record.steady;
+  last_faces_ = record.forces.Faces(hull_);
   rows_.push_back({solver.time(), rp + rf, rf, rp, rwl, steady_.force_change, steady_.eta_change});
 }
 
 std::vector<std::string> ResistanceMonitor::Finish(const PimpleSolver& solver) { return {Write(file_, solver)}; }
 
-std::string ResistanceMonitor::Write(const std::filesystem::path& file, const PimpleSolver& solver) const {
-  KELVIN_CHECK(!rows_.empty(), "a recorded step before the report");
+namespace {
+
+void Scalar(data::H5Writer& w, const std::string& name, double v, std::string_view units, std::string_view what) {
+  w.WriteArray(name, std::span<const double>(&v, 1), {1}, units, what);
+}
+
+// Vectors of one patch's faces as an {n, 3} array.
+std::vector<double> Flatten(std::span<const Vector3> v) {
+  std::vector<double> out(3 * v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    for (int d = 0; d < 3; ++d) out[3 * i + d] = v[i][d];
+  }
+  return out;
+}
+
+// Per hull face at the last step: where on the hull the resistance acts.
+void WriteHullFaces(data::H5Writer& w, const Mesh& mesh, int hull, const PatchFaceForces& ff,
+                    const Vector3& direction) {
+  const Patch& patch = mesh.patches()[hull];
+  const std::size_t n = static_cast<std::size_t>(patch.size);
+  const auto faces = [&](std::span<const Vector3> all) {
+    return Flatten(all.subspan(static_cast<std::size_t>(patch.start), n));
+  };
+  w.WriteArray("hull_faces/centre", faces(mesh.face_centres()), {n, 3}, "m", "hull face centres (mesh axes)");
+  w.WriteArray("hull_faces/area", faces(mesh.face_areas()), {n, 3}, "m^2",
+               "hull face area vectors, out of the water into the hull");
+  w.WriteArray("hull_faces/pressure_force", Flatten(ff.pressure), {n, 3}, "N",
+               "pressure force of the water on each hull face");
+  w.WriteArray("hull_faces/viscous_force", Flatten(ff.viscous), {n, 3}, "N",
+               "viscous force of the water on each hull face");
+  w.WriteArray("hull_faces/direction", std::vector<double>{direction.x(), direction.y(), direction.z()}, {3}, "1",
+               "unit resistance direction d (R = F . d)");
+}
+
+// The wave profile along the hull, the wave cuts and the whole pattern, face by face.
+void WriteWaves(data::H5Writer& w, const LinearizedFreeSurface& fs, int hull, const ResistanceOptions& o) {
+  const PatchSurface& s = fs.surface();
+  const std::vector<double>& eta = fs.eta();
+  const WaveProfile prof = HullWaveProfile(s, eta, hull);
+  const std::size_t m = prof.x.size();
+  w.WriteArray("wave_profile/x", prof.x, {m}, "m", "waterline edge centre x (port y >= 0 first, then starboard)");
+  w.WriteArray("wave_profile/y", prof.y, {m}, "m", "waterline edge centre y");
+  w.WriteArray("wave_profile/eta", prof.eta, {m}, "m", "wave elevation at the hull");
+  const int np = o.wave_cut_points;
+  std::vector<double> x(np);
+  for (int k = 0; k < np; ++k) x[k] = s.min().x() + (s.max().x() - s.min().x()) * (k + 0.5) / np;
+  for (std::size_t c = 0; c < o.wave_cut_y.size(); ++c) {
+    const double y0 = o.wave_cut_y[c];
+    const std::string grp = fmt::format("wave_cuts/cut{}", c);
+    w.WriteArray(grp + "/x", x, {x.size()}, "m", "stations along the cut");
+    w.WriteArray(grp + "/eta", WaveCut(s, eta, y0, x), {x.size()}, "m", "wave elevation (NaN outside the patch)");
+    w.SetAttribute(grp, "y", y0);
+  }
+  const std::size_t nf = eta.size();
+  std::vector<double> fx(nf), fy(nf);
+  for (std::size_t i = 0; i < nf; ++i) {
+    fx[i] = s.centres()[i].x();
+    fy[i] = s.centres()[i].y();
+  }
+  w.WriteArray("surface/x", fx, {nf}, "m", "free-surface face centre x");
+  w.WriteArray("surface/y", fy, {nf}, "m", "free-surface face centre y");
+  w.WriteArray("surface/area", s.areas(), {nf}, "m^2", "free-surface face area");
+  w.WriteArray("surface/eta", eta, {nf}, "m", "wave elevation");
+  w.WriteArray("surface/damping", fs.damping(), {nf}, "1/s", "beach damping rate (0 outside the beaches)");
+  Scalar(w, "eta_max", *std::max_element(eta.begin(), eta.end()), "m", "largest wave elevation on the patch");
+  Scalar(w, "eta_min", *std::min_element(eta.begin(), eta.end()), "m", "lowest wave elevation on the patch");
+}
+
+}  // namespace
+
+std::string ResistanceMonitor::WriteSplit(data::H5Writer& w) const {
   const auto& last = rows_.back();
   const double q = 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed;
-  const double rt = last[1], rf = last[2], rp = last[3], rwl = last[4];
-  data::H5Writer w(file);
-  auto scalar = [&](const std::string& name, double v, std::string_view units, std::string_view what) {
-    w.WriteArray(name, std::span<const double>(&v, 1), {1}, units, what);
-  };
-  scalar("speed", reference_.speed, "m/s", "inflow speed U");
-  scalar("rho", rho_, "kg/m^3", "density");
-  scalar("wetted_area", reference_.area, "m^2", "wetted area at rest S (hull patch below z = 0)");
-  scalar("R_T", rt, "N", "total resistance R_F + R_P along the inflow direction");
-  scalar("R_F", rf, "N", "friction (wall shear) resistance");
-  scalar("R_P", rp, "N", "pressure resistance");
-  scalar("C_T", rt / q, "1", "R_T / (0.5 rho S U^2)");
-  scalar("C_F", rf / q, "1", "R_F / (0.5 rho S U^2)");
-  scalar("C_P", rp / q, "1", "R_P / (0.5 rho S U^2)");
-  scalar("converged", steady_.settled ? 1.0 : 0.0, "1", "1 if the steady criterion stopped the run");
-  scalar("converged_step", steady_.settled_step, "1", "step at which the criterion was met (-1: not met)");
-  scalar("tolerance", tolerance_, "1", "relative change allowed over one window");
-  scalar("window", steady_.window, "s", "pseudo-time window of the criterion (one flow-through)");
-  scalar("flow_through", flow_through_, "s", "mesh extent along the inflow / U");
-  scalar("release_time", steady_.release_time, "s", "pseudo-time at which the rigid lid was released (NaN: never held)");
+  const double rt = last[1], rf = last[2], rp = last[3];
+  Scalar(w, "speed", reference_.speed, "m/s", "inflow speed U");
+  Scalar(w, "rho", rho_, "kg/m^3", "density");
+  Scalar(w, "wetted_area", reference_.area, "m^2", "wetted area at rest S (hull patch below z = 0)");
+  Scalar(w, "R_T", rt, "N", "total resistance R_F + R_P along the inflow direction");
+  Scalar(w, "R_F", rf, "N", "friction (wall shear) resistance");
+  Scalar(w, "R_P", rp, "N", "pressure resistance");
+  Scalar(w, "C_T", rt / q, "1", "R_T / (0.5 rho S U^2)");
+  Scalar(w, "C_F", rf / q, "1", "R_F / (0.5 rho S U^2)");
+  Scalar(w, "C_P", rp / q, "1", "R_P / (0.5 rho S U^2)");
+  Scalar(w, "converged", steady_.settled ? 1.0 : 0.0, "1", "1 if the steady criterion stopped the run");
+  Scalar(w, "converged_step", steady_.settled_step, "1", "step at which the criterion was met (-1: not met)");
+  Scalar(w, "tolerance", tolerance_, "1", "relative change allowed over one window");
+  Scalar(w, "window", steady_.window, "s", "pseudo-time window of the criterion (one flow-through)");
+  Scalar(w, "flow_through", flow_through_, "s", "mesh extent along the inflow / U");
+  Scalar(w, "release_time", steady_.release_time, "s",
+         "pseudo-time at which the rigid lid was released (NaN: never held)");
   std::string summary = fmt::format(
       "resistance on '{}': R_T = {:.5g} N (R_F {:.5g}, R_P {:.5g}); C_T = {:.5e}, C_F = {:.5e}, C_P = {:.5e} "
       "(S = {:.5g} m^2, U = {:.5g} m/s); {} (force change {:.2e}, eta change {:.2e} over {:.4g} s)",
@@ -75,98 +142,60 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Pi
       steady_.force_change, steady_.eta_change, steady_.window);
   if (reference_.length > 0.0) {
     const double fn = reference_.speed / std::sqrt(g_ * reference_.length);
-    scalar("Fn", fn, "1", "Froude number U / sqrt(g L)");
+    Scalar(w, "Fn", fn, "1", "Froude number U / sqrt(g L)");
     summary += fmt::format("; Fn = {:.4f}", fn);
     if (nu_ > 0.0) {
-      scalar("Re", reference_.speed * reference_.length / nu_, "1", "Reynolds number U L / nu");
+      Scalar(w, "Re", reference_.speed * reference_.length / nu_, "1", "Reynolds number U L / nu");
       summary += fmt::format(", Re = {:.4g}", reference_.speed * reference_.length / nu_);
     }
   }
-  if (!options_.double_body.empty() && !std::filesystem::exists(options_.double_body)) {
-    summary += fmt::format("; no wave-making part: the double-body result {} does not exist (run it first)",
-                           options_.double_body.string());
-  } else if (!options_.double_body.empty()) {
-    // The wave-making part by coefficients, C_W = C_P - C_P(double body), so
-    // a double-body run at another speed of the same grid serves (C_P of the
-    // double body changes only through the Reynolds number).
-    const data::H5Reader db(options_.double_body);
-    const double cp_db = db.Read("C_P").at(0);
-    const double s_db = db.Read("wetted_area").at(0), u_db = db.Read("speed").at(0);
-    if (std::abs(s_db - reference_.area) > 1e-6 * reference_.area) {
-      throw DataFileError(fmt::format("double_body {}: wetted area {} m^2; expected the same grid as this run ({} m^2)",
-                                      options_.double_body.string(), s_db, reference_.area));
-    }
-    scalar("C_P_double_body", cp_db, "1", "pressure resistance coefficient of the double-body run on the same grid");
-    scalar("double_body_speed", u_db, "m/s", "speed of that double-body run");
-    scalar("C_W", rp / q - cp_db, "1", "wave-making part C_P - C_P(double body)");
-    scalar("R_W", (rp / q - cp_db) * q, "N", "wave-making resistance C_W 0.5 rho S U^2");
-    summary += fmt::format("; wave-making C_W = C_P - C_P(double body at {:.4g} m/s) = {:.5e} (R_W = {:.5g} N)", u_db,
-                           rp / q - cp_db, (rp / q - cp_db) * q);
+  return summary;
+}
+
+std::string ResistanceMonitor::WriteWaveMaking(data::H5Writer& w) const {
+  if (options_.double_body.empty()) return "";
+  if (!std::filesystem::exists(options_.double_body)) {
+    return fmt::format("; no wave-making part: the double-body result {} does not exist (run it first)",
+                       options_.double_body.string());
   }
+  // The wave-making part by coefficients, C_W = C_P - C_P(double body), so
+  // a double-body run at another speed of the same grid serves (C_P of the
+  // double body changes only through the Reynolds number).
+  const double q = 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed;
+  const double rp = rows_.back()[3];
+  const data::H5Reader db(options_.double_body);
+  const double cp_db = db.Read("C_P").at(0);
+  const double s_db = db.Read("wetted_area").at(0), u_db = db.Read("speed").at(0);
+  if (std::abs(s_db - reference_.area) > 1e-6 * reference_.area) {
+    throw DataFileError(fmt::format("double_body {}: wetted area {} m^2; expected the same grid as this run ({} m^2)",
+                                    options_.double_body.string(), s_db, reference_.area));
+  }
+  Scalar(w, "C_P_double_body", cp_db, "1", "pressure resistance coefficient of the double-body run on the same grid");
+  Scalar(w, "double_body_speed", u_db, "m/s", "speed of that double-body run");
+  Scalar(w, "C_W", rp / q - cp_db, "1", "wave-making part C_P - C_P(double body)");
+  Scalar(w, "R_W", (rp / q - cp_db) * q, "N", "wave-making resistance C_W 0.5 rho S U^2");
+  return fmt::format("; wave-making C_W = C_P - C_P(double body at {:.4g} m/s) = {:.5e} (R_W = {:.5g} N)", u_db,
+                     rp / q - cp_db, (rp / q - cp_db) * q);
+}
+
+std::string ResistanceMonitor::Write(const std::filesystem::path& file, const PimpleSolver& solver) const {
+  KELVIN_CHECK(!rows_.empty(), "a recorded step before the report");
+  data::H5Writer w(file);
+  std::string summary = WriteSplit(w);
+  summary += WriteWaveMaking(w);
   const std::size_t rows = rows_.size();
   std::vector<double> h(rows * 7);
   for (std::size_t r = 0; r < rows; ++r) std::copy(rows_[r].begin(), rows_[r].end(), h.begin() + 7 * r);
   w.WriteArray("history", h, {rows, 7}, "s, N, N, N, N, 1, 1",
                "per step: time, R_T, R_F, R_P, R_WL, force change, eta change (NaN before a full window)");
-  {
-    // Per hull face at the last step: where on the hull the resistance acts.
-    const Mesh& mesh = solver.mesh();
-    const Patch& patch = mesh.patches()[hull_];
-    const PatchFaceForces ff = ComputePatchFaceForces(solver, hull_, rho_, nu_);
-    const std::size_t n = static_cast<std::size_t>(patch.size);
-    std::vector<double> centre(3 * n), area(3 * n), fp(3 * n), fv(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const int f = patch.start + static_cast<int>(i);
-      for (int d = 0; d < 3; ++d) {
-        centre[3 * i + d] = mesh.face_centres()[f][d];
-        area[3 * i + d] = mesh.face_areas()[f][d];
-        fp[3 * i + d] = ff.pressure[i][d];
-        fv[3 * i + d] = ff.viscous[i][d];
-      }
-    }
-    w.WriteArray("hull_faces/centre", centre, {n, 3}, "m", "hull face centres (mesh axes)");
-    w.WriteArray("hull_faces/area", area, {n, 3}, "m^2", "hull face area vectors, out of the water into the hull");
-    w.WriteArray("hull_faces/pressure_force", fp, {n, 3}, "N", "pressure force of the water on each hull face");
-    w.WriteArray("hull_faces/viscous_force", fv, {n, 3}, "N", "viscous force of the water on each hull face");
-    w.WriteArray("hull_faces/direction", std::vector<double>{reference_.direction.x(), reference_.direction.y(), reference_.direction.z()}, {3},
-                 "1", "unit resistance direction d (R = F . d)");
-  }
-  if (const LinearizedFreeSurface* fs = free_surface_) {
-    scalar("R_WL", rwl, "N", "waterline-integral correction 0.5 rho g sum eta^2 n_x dl (not in R_T)");
-    scalar("C_WL", rwl / q, "1", "R_WL / (0.5 rho S U^2)");
+  WriteHullFaces(w, solver.mesh(), hull_, last_faces_, reference_.direction);
+  if (free_surface_) {
+    const double q = 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed;
+    const double rwl = rows_.back()[4];
+    Scalar(w, "R_WL", rwl, "N", "waterline-integral correction 0.5 rho g sum eta^2 n_x dl (not in R_T)");
+    Scalar(w, "C_WL", rwl / q, "1", "R_WL / (0.5 rho S U^2)");
     summary += fmt::format("; waterline correction (separate) R_WL = {:.4g} N, C_WL = {:.3e}", rwl, rwl / q);
-    const PatchSurface& s = fs->surface();
-    const std::vector<double>& eta = fs->eta();
-    const WaveProfile prof = HullWaveProfile(s, eta, hull_);
-    const std::size_t m = prof.x.size();
-    w.WriteArray("wave_profile/x", prof.x, {m}, "m", "waterline edge centre x (port y >= 0 first, then starboard)");
-    w.WriteArray("wave_profile/y", prof.y, {m}, "m", "waterline edge centre y");
-    w.WriteArray("wave_profile/eta", prof.eta, {m}, "m", "wave elevation at the hull");
-    const int np = options_.wave_cut_points;
-    std::vector<double> x(np);
-    for (int k = 0; k < np; ++k) x[k] = s.min().x() + (s.max().x() - s.min().x()) * (k + 0.5) / np;
-    for (std::size_t c = 0; c < options_.wave_cut_y.size(); ++c) {
-      const double y0 = options_.wave_cut_y[c];
-      const std::string grp = fmt::format("wave_cuts/cut{}", c);
-      w.WriteArray(grp + "/x", x, {x.size()}, "m", "stations along the cut");
-      w.WriteArray(grp + "/eta", WaveCut(s, eta, y0, x), {x.size()}, "m", "wave elevation (NaN outside the patch)");
-      w.SetAttribute(grp, "y", y0);
-    }
-    // The whole pattern, face by face, for plots and comparisons (h5py).
-    const std::size_t nf = eta.size();
-    std::vector<double> fx(nf), fy(nf);
-    for (std::size_t i = 0; i < nf; ++i) {
-      fx[i] = s.centres()[i].x();
-      fy[i] = s.centres()[i].y();
-    }
-    w.WriteArray("surface/x", fx, {nf}, "m", "free-surface face centre x");
-    w.WriteArray("surface/y", fy, {nf}, "m", "free-surface face centre y");
-    w.WriteArray("surface/area", s.areas(), {nf}, "m^2", "free-surface face area");
-    w.WriteArray("surface/eta", eta, {nf}, "m", "wave elevation");
-    w.WriteArray("surface/damping", fs->damping(), {nf}, "1/s", "beach damping rate (0 outside the beaches)");
-    const double mx = *std::max_element(eta.begin(), eta.end()), mn = *std::min_element(eta.begin(), eta.end());
-    scalar("eta_max", mx, "m", "largest wave elevation on the patch");
-    scalar("eta_min", mn, "m", "lowest wave elevation on the patch");
+    WriteWaves(w, *free_surface_, hull_, options_);
   }
   w.Commit();
   return summary;

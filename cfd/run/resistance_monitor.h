@@ -45,6 +45,10 @@ class ResistanceMonitor final : public Monitor {
 
  private:
   std::string Write(const std::filesystem::path& file, const PimpleSolver& solver) const;
+  // The split, its coefficients and the steady criterion; the wave-making
+  // part against the double body. Each returns its part of the summary.
+  std::string WriteSplit(data::H5Writer& writer) const;
+  std::string WriteWaveMaking(data::H5Writer& writer) const;
 
   ResistanceOptions options_;
   CaseReference reference_;
@@ -56,6 +60,7 @@ class ResistanceMonitor final : public Monitor {
   SteadyStatus steady_;
   double tolerance_;
   std::vector<std::array<double, 7>> rows_;
+  PatchFaceForces last_faces_;  // of the hull at the last step
 };
 
 }  // namespace kelvin::cfd

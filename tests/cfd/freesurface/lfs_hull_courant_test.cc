@@ -60,11 +60,11 @@ class LfsHullCourant : public ::testing::Test {
   // stops it long before).
   static Result Run(const std::string& name, double dt) {
     std::string text = case_text_;
-    const std::string from = "time: {dt: 0.5, end: 200.0}";
+    const std::string from = "  dt: 0.5\n  end: 200.0";
     const auto at = text.find(from);
     EXPECT_NE(at, std::string::npos) << "wigley_quick.yaml no longer has '" << from << "'";
     if (at == std::string::npos) return {};
-    text.replace(at, from.size(), "time: {dt: " + std::to_string(dt) + ", end: " + std::to_string(600 * dt) + "}");
+    text.replace(at, from.size(), "  dt: " + std::to_string(dt) + "\n  end: " + std::to_string(600 * dt));
     const fs::path dir = tmp_->path() / name;
     fs::create_directories(dir);
     const fs::path file = dir / "case.yaml";

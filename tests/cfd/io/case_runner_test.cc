@@ -200,9 +200,9 @@ TEST(CaseRunner, BadSteadyAndResistanceSectionsAreErrors) {
     s.replace(s.find(from), from.size(), to);
     return s;
   };
-  const std::string steady = "time: {steady: {quantities: [force], window: 0, window_steps: 5, tolerance: 1.0e-3";
-  ExpectCaseConfigError(with("time: {dt: ", steady + ", window_steps: 0}, dt: "), "window_steps");
-  ExpectCaseConfigError(with("time: {dt: ", steady + ", min_steps: -2}, dt: "), "min_steps");
+  const std::string steady = "time: {steady: {quantities: [force], window: 0, tolerance: 1.0e-3";
+  ExpectCaseConfigError(with("time: {dt: ", steady + ", window_steps: 0}, dt: "), "window_steps = 0");
+  ExpectCaseConfigError(with("time: {dt: ", steady + ", min_steps: -2}, dt: "), "min_steps = -2");
   ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {quantities: [force], window: 0, tolerance: -1}, dt: "),
                         "tolerance");
   ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {quantities: [lift], window: 0}, dt: "),

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ constexpr const char* kBox = R"(
 mesh:
   box: {min: [-3, -2, -1], max: [3, 2, 0], cells: [12, 8, 2], obstacle: {min: [4, 3, 1], max: [8, 5, 2]}}
 physics: {nu: 1.0e-2, rho: 998.0}
+solution: {n_outer: 1}
 boundary:
   xmax: {U: {type: fixedValue, value: [-1, 0, 0]}, p: {type: zeroGradient}}
   xmin: {U: {type: zeroGradient}, p: {type: fixedValue, value: 0}}
@@ -124,6 +126,7 @@ TEST(ResistanceMonitor, CasesThatCannotProvideItAreErrors) {
     try {
       Load(extra, wall);
     } catch (const ConfigError& e) {
+      std::printf("%s\n", e.what());
       return std::string(e.what());
     }
     return std::string("no error");
