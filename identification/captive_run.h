@@ -5,7 +5,7 @@
 // Conventions are those of simulator/mmg (Yasukawa & Yoshimura 2015): ship
 // axes at midship, x forward, y starboard, psi and r positive to starboard,
 // beta = -atan(v_m / u), forces X, Y in N and the yaw moment N about midship
-// in N m. Motions follow docs/lfs-formulation.md section 6:
+// in N m. Motions follow docs/formulation.md section 6:
 //   static drift:  carriage at U along earth x, heading psi = beta; the speed
 //                  ramps up as U (1 - cos(pi t / t_ramp)) / 2 over t_ramp;
 //   pure sway:     y0(t) = -y_a sin(omega t), psi = 0, carriage at U;
