@@ -144,9 +144,9 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
   return f;
 }
 
-CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file) {
+data::CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file) {
   const auto root = data::ConfigNode::LoadFile(ship_file);
-  CaptiveShip s;
+  data::CaptiveShip s;
   s.name = root["ship"].Get<std::string>("name");
   const auto p = root["principal"];
   p.ExpectKeys({"Lpp", "B", "d", "displacement", "x_G", "k_zz", "rho", "nu", "wetted_area"});
@@ -161,7 +161,7 @@ CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file) {
   return s;
 }
 
-CaptiveCampaign RunCampaign(const CampaignFile& f) {
+data::CaptiveCampaign RunCampaign(const CampaignFile& f) {
   if (f.solver != CampaignFile::Solver::kMmg) {
     throw ConfigError(f.name + ": RunCampaign runs the mmg solver; cfd campaigns run through cfd/campaign");
   }
@@ -172,7 +172,8 @@ CaptiveCampaign RunCampaign(const CampaignFile& f) {
     throw ConfigError(f.name + ": no speed given and the ship file has no conditions.approach_speed");
   }
   design.Validate();
-  CaptiveCampaign campaign = GenerateCampaign(sim::MmgModel<double>(ship), design, f.sampling);
+  data::CaptiveCampaign campaign =
+      GenerateCampaign(sim::MmgModel<double>(ship), design, f.sampling);
   if (f.noise > 0) AddForceNoise(campaign, f.noise, f.seed);
   return campaign;
 }

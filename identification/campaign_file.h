@@ -87,8 +87,7 @@ struct CampaignFile {
 // The ship data of a campaign from the `ship` and `principal` sections of a
 // ship file (mass = rho displacement, I_zG = mass (k_zz Lpp)^2 with k_zz 0.25
 // unless given); other sections are not read. Throws ConfigError.
-CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file);
-
+data::CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file);
 
 // Reads and validates a campaign file; every unknown key or bad value is a
 // kelvin::ConfigError naming the file, line, key and what was expected.
@@ -96,6 +95,6 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path);
 
 // Runs the campaign with the MMG solver and returns the captive runs (the
 // cfd solver runs through cfd/campaign/cfd_campaign.h).
-CaptiveCampaign RunCampaign(const CampaignFile& file);
+data::CaptiveCampaign RunCampaign(const CampaignFile& file);
 
 }  // namespace kelvin::ident

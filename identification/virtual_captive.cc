@@ -11,8 +11,8 @@
 
 namespace kelvin::ident {
 
-CaptiveShip CaptiveShipFrom(const sim::ShipParameters& ship) {
-  CaptiveShip s;
+data::CaptiveShip CaptiveShipFrom(const sim::ShipParameters& ship) {
+  data::CaptiveShip s;
   s.name = ship.name;
   s.Lpp = ship.principal.Lpp;
   s.B = ship.principal.B;
@@ -24,7 +24,7 @@ CaptiveShip CaptiveShipFrom(const sim::ShipParameters& ship) {
   return s;
 }
 
-sim::ShipParameters HullShipFrom(const CaptiveShip& ship) {
+sim::ShipParameters HullShipFrom(const data::CaptiveShip& ship) {
   sim::ShipParameters s;
   s.principal.Lpp = ship.Lpp;
   s.principal.B = ship.B;
@@ -79,16 +79,16 @@ void CampaignDesign::Validate() const {
   }
 }
 
-CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& name,
-                       MotionParameters motion, const VirtualCaptiveOptions& options) {
+data::CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& name,
+                             data::MotionParameters motion, const VirtualCaptiveOptions& options) {
   options.Validate();
-  const CaptiveShip ship = CaptiveShipFrom(model.ship());
-  CaptiveRun run;
+  const data::CaptiveShip ship = CaptiveShipFrom(model.ship());
+  data::CaptiveRun run;
   run.name = name;
   run.includes_rigid_body_inertia = options.include_rigid_body_inertia;
   std::size_t samples = 0;
   double dt = 0;
-  if (IsHarmonic(motion.kind)) {
+  if (data::IsHarmonic(motion.kind)) {
     const double T = motion.Period();
     motion.t_ramp = options.ramp_periods * T;
     dt = T / options.samples_per_period;
@@ -105,10 +105,10 @@ CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& na
   for (auto& f : run.force) f.resize(samples);
   for (std::size_t i = 0; i < samples; ++i) {
     const double t = static_cast<double>(i) * dt;
-    const BodyKinematics k = KinematicsAt(motion, ship.Lpp, t);
+    const data::BodyKinematics k = data::KinematicsAt(motion, ship.Lpp, t);
     std::array<double, 3> f = CaptiveHydrodynamicForce(model, k);
     if (options.include_rigid_body_inertia) {
-      const std::array<double, 3> rb = RigidBodyInertia(ship, k);
+      const std::array<double, 3> rb = data::RigidBodyInertia(ship, k);
       for (int c = 0; c < 3; ++c) f[c] -= rb[c];
     }
     run.time[i] = t;
@@ -133,45 +133,50 @@ std::vector<PlannedRun> PlanRuns(const CampaignDesign& design, double L, const V
   constexpr double kRadToDeg = 180.0 / std::numbers::pi;
   const double omega = design.omega_prime * design.U / L;
   std::vector<PlannedRun> runs;
-  auto add = [&](std::string name, MotionParameters m) {
-    m.t_ramp = IsHarmonic(m.kind) ? options.ramp_periods * m.Period() : options.steady_ramp;
+  auto add = [&](std::string name, data::MotionParameters m) {
+    m.t_ramp = data::IsHarmonic(m.kind) ? options.ramp_periods * m.Period() : options.steady_ramp;
     runs.push_back({std::move(name), m});
   };
   for (double beta : design.drift_angles) {
     add(fmt::format("drift_{:+.1f}deg", beta * kRadToDeg),
-        MotionParameters{.kind = MotionKind::kStaticDrift, .U = design.U, .beta = beta});
+        data::MotionParameters{
+            .kind = data::MotionKind::kStaticDrift, .U = design.U, .beta = beta});
   }
   for (double v_a : design.sway_amplitudes) {
-    add(fmt::format("sway_v{:.3f}", v_a), MotionParameters{.kind = MotionKind::kPureSway,
-                                                           .U = design.U,
-                                                           .y_a = v_a * design.U / omega,
-                                                           .omega = omega});
+    add(fmt::format("sway_v{:.3f}", v_a),
+        data::MotionParameters{.kind = data::MotionKind::kPureSway,
+                               .U = design.U,
+                               .y_a = v_a * design.U / omega,
+                               .omega = omega});
   }
   for (double r_a : design.yaw_amplitudes) {
-    add(fmt::format("yaw_r{:.3f}", r_a), MotionParameters{.kind = MotionKind::kPureYaw,
-                                                          .U = design.U,
-                                                          .psi_a = r_a / design.omega_prime,
-                                                          .omega = omega});
+    add(fmt::format("yaw_r{:.3f}", r_a), data::MotionParameters{.kind = data::MotionKind::kPureYaw,
+                                                                .U = design.U,
+                                                                .psi_a = r_a / design.omega_prime,
+                                                                .omega = omega});
   }
   for (double beta : design.yaw_drift_angles) {
     add(fmt::format("yaw_drift_{:+.1f}deg_r{:.3f}", beta * kRadToDeg, design.yaw_drift_amplitude),
-        MotionParameters{.kind = MotionKind::kYawDrift,
-                         .U = design.U,
-                         .beta = beta,
-                         .psi_a = design.yaw_drift_amplitude / design.omega_prime,
-                         .omega = omega});
+        data::MotionParameters{.kind = data::MotionKind::kYawDrift,
+                               .U = design.U,
+                               .beta = beta,
+                               .psi_a = design.yaw_drift_amplitude / design.omega_prime,
+                               .omega = omega});
   }
   for (const CampaignDesign::Circular& arm : design.circular) {
     add(fmt::format("circular_{:+.1f}deg_r{:.3f}", arm.beta * kRadToDeg, arm.r_prime),
-        MotionParameters{
-            .kind = MotionKind::kCircularMotion, .U = design.U, .beta = arm.beta, .r_prime = arm.r_prime});
+        data::MotionParameters{.kind = data::MotionKind::kCircularMotion,
+                               .U = design.U,
+                               .beta = arm.beta,
+                               .r_prime = arm.r_prime});
   }
   return runs;
 }
 
-CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model, const CampaignDesign& design,
-                                 const VirtualCaptiveOptions& options) {
-  CaptiveCampaign c;
+data::CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model,
+                                       const CampaignDesign& design,
+                                       const VirtualCaptiveOptions& options) {
+  data::CaptiveCampaign c;
   c.description = fmt::format("virtual captive tests of {} from the MMG model (U = {} m/s)",
                               model.ship().name, design.U);
   c.ship = CaptiveShipFrom(model.ship());
@@ -181,11 +186,11 @@ CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model, const Campa
   return c;
 }
 
-void AddForceNoise(CaptiveCampaign& campaign, double fraction, std::uint64_t seed) {
+void AddForceNoise(data::CaptiveCampaign& campaign, double fraction, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
-  for (CaptiveRun& run : campaign.runs) {
-    const AnalysisWindow w = SelectWindow(run, "AddForceNoise");
+  for (data::CaptiveRun& run : campaign.runs) {
+    const data::AnalysisWindow w = data::SelectWindow(run, "AddForceNoise");
     for (auto& f : run.force) {
       double sum2 = 0;
       for (std::size_t i = w.begin; i < w.end; ++i) sum2 += f[i] * f[i];

@@ -7,18 +7,18 @@
 #include <string>
 #include <vector>
 
-#include "identification/captive_run.h"
+#include "data/schema/captive_run.h"
 #include "simulator/mmg/mmg_model.h"
 #include "simulator/mmg/ship_parameters.h"
 
 namespace kelvin::ident {
 
 // The ship data of a campaign from an MMG ship definition.
-CaptiveShip CaptiveShipFrom(const sim::ShipParameters& ship);
+data::CaptiveShip CaptiveShipFrom(const sim::ShipParameters& ship);
 
 // An MMG ship definition (principal particulars only; propeller and rudder
 // left empty) from campaign ship data, for evaluating the hull model.
-sim::ShipParameters HullShipFrom(const CaptiveShip& ship);
+sim::ShipParameters HullShipFrom(const data::CaptiveShip& ship);
 
 struct VirtualCaptiveOptions {
   // When true the series are balance readings, F_hyd - M_RB a (what a towing
@@ -35,8 +35,8 @@ struct VirtualCaptiveOptions {
 };
 
 // One run with the motion `motion` (its t_ramp is overwritten from the options).
-CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& name,
-                       MotionParameters motion, const VirtualCaptiveOptions& options);
+data::CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::string& name,
+                             data::MotionParameters motion, const VirtualCaptiveOptions& options);
 
 // A campaign design in prime quantities, at speed U.
 struct CampaignDesign {
@@ -66,17 +66,18 @@ CampaignDesign StandardDesign(double U, bool combined);
 // (ramp_periods periods for harmonic runs, steady_ramp for steady ones).
 struct PlannedRun {
   std::string name;
-  MotionParameters motion;
+  data::MotionParameters motion;
 };
 std::vector<PlannedRun> PlanRuns(const CampaignDesign& design, double Lpp, const VirtualCaptiveOptions& options);
 
-CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model, const CampaignDesign& design,
-                                 const VirtualCaptiveOptions& options);
+data::CaptiveCampaign GenerateCampaign(const sim::MmgModel<double>& model,
+                                       const CampaignDesign& design,
+                                       const VirtualCaptiveOptions& options);
 
 // Adds Gaussian noise of standard deviation `fraction` x (RMS of the channel
 // over the run's analysis window, i.e. after the ramp-up) to every force
 // sample (std::mt19937_64 seeded with `seed`). Channels that are zero over
 // the window (Y and N at zero drift) stay noise-free.
-void AddForceNoise(CaptiveCampaign& campaign, double fraction, std::uint64_t seed);
+void AddForceNoise(data::CaptiveCampaign& campaign, double fraction, std::uint64_t seed);
 
 }  // namespace kelvin::ident

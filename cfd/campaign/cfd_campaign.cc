@@ -19,10 +19,10 @@
 #include "cfd/run/run_driver.h"
 #include "data/report/progress.h"
 #include "data/schema/atomic_file.h"
+#include "data/schema/captive_io.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
-#include "identification/captive_io.h"
 #include "identification/virtual_captive.h"
 
 extern char** environ;
@@ -41,7 +41,7 @@ constexpr std::array<std::string_view, 9> kExtraChannels = {
 struct Job {
   enum class State { kLeft, kRunning, kDone, kFailed };
   std::string name;
-  ident::MotionParameters motion;  // as the captive schema records it
+  data::MotionParameters motion;  // as the captive schema records it
   MotionOptions cfd_motion;
   double dt = 0.0;
   int steps = 0;
@@ -52,23 +52,23 @@ struct Job {
   pid_t pid = -1;
 };
 
-PrescribedMotion ToPrescribed(ident::MotionKind kind) {
+PrescribedMotion ToPrescribed(data::MotionKind kind) {
   switch (kind) {
-    case ident::MotionKind::kStaticDrift:
+    case data::MotionKind::kStaticDrift:
       return PrescribedMotion::kStaticDrift;
-    case ident::MotionKind::kPureSway:
+    case data::MotionKind::kPureSway:
       return PrescribedMotion::kPureSway;
-    case ident::MotionKind::kPureYaw:
+    case data::MotionKind::kPureYaw:
       return PrescribedMotion::kPureYaw;
-    case ident::MotionKind::kYawDrift:
+    case data::MotionKind::kYawDrift:
       return PrescribedMotion::kYawDrift;
-    case ident::MotionKind::kCircularMotion:
+    case data::MotionKind::kCircularMotion:
       return PrescribedMotion::kCircularMotion;
   }
   return PrescribedMotion::kStaticDrift;
 }
 
-std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip& ship,
+std::vector<Job> PlanJobs(const ident::CampaignFile& f, const data::CaptiveShip& ship,
                           double case_dt) {
   ident::CampaignDesign design = f.design;
   design.U = f.speed;
@@ -77,21 +77,21 @@ std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip
     Job job;
     job.name = run.name;
     job.motion = run.motion;
-    const ident::MotionParameters& m = run.motion;
+    const data::MotionParameters& m = run.motion;
     MotionOptions& o = job.cfd_motion;
     o.kind = ToPrescribed(m.kind);
     o.speed = m.U;
     o.drift_angle = m.beta;
     o.sway_amplitude = m.y_a;
     o.yaw_amplitude = m.psi_a;
-    o.period = ident::IsHarmonic(m.kind) ? m.Period() : 0.0;
+    o.period = data::IsHarmonic(m.kind) ? m.Period() : 0.0;
     o.yaw_rate = m.r_prime * m.U / ship.Lpp;
     // Harmonic runs ramp the motion up over motion_ramp_periods periods; the
     // captive schema's t_ramp (what the analysis discards) stays
     // ramp_periods periods. Both laws agree for t >= t_ramp.
-    o.ramp_time = ident::IsHarmonic(m.kind) ? f.cfd.motion_ramp_periods * m.Period() : m.t_ramp;
+    o.ramp_time = data::IsHarmonic(m.kind) ? f.cfd.motion_ramp_periods * m.Period() : m.t_ramp;
     o.centre = Vector3(f.cfd.centre[0], f.cfd.centre[1], f.cfd.centre[2]);
-    if (ident::IsHarmonic(m.kind)) {
+    if (data::IsHarmonic(m.kind)) {
       job.dt = o.period / f.cfd.steps_per_period;
       job.steps = (f.sampling.ramp_periods + f.sampling.periods) * f.cfd.steps_per_period;
     } else {
@@ -198,7 +198,7 @@ std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
   long remaining = 0;
   for (const Job& j : jobs) {
     out += fmt::format("  {:<30} {:<16} {:<8} {:>6}/{:<6}\n", j.name,
-                       ident::MotionKindName(j.motion.kind), StateName(j.state), j.step, j.steps);
+                       data::MotionKindName(j.motion.kind), StateName(j.state), j.step, j.steps);
     done += j.state == Job::State::kDone;
     running += j.state == Job::State::kRunning;
     left += j.state == Job::State::kLeft;
@@ -218,7 +218,7 @@ std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
 struct Context {
   const ident::CampaignFile& file;
   const CaseSettings& settings;  // of the campaign's case file
-  const ident::CaptiveShip& ship;
+  const data::CaptiveShip& ship;
   long budget = 0;    // > 0: steps allowed in this call
   long computed = 0;  // steps computed in this call
   std::function<void()> report;
@@ -416,7 +416,7 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
   if (f.solver != ident::CampaignFile::Solver::kCfd) {
     throw ConfigError(f.path.string() + ": campaign.solver is not 'cfd'");
   }
-  const ident::CaptiveShip ship = ident::LoadCaptiveShip(f.ship_file);
+  const data::CaptiveShip ship = ident::LoadCaptiveShip(f.ship_file);
   if (!(f.speed > 0))
     throw ConfigError(f.path.string() + ": campaign.speed: expected the carriage speed in m/s");
   const CaseSettings settings =
@@ -551,7 +551,7 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
   }
 
   // Every run is done: the campaign file in the captive schema.
-  ident::CaptiveCampaign campaign;
+  data::CaptiveCampaign campaign;
   const bool free_surface = settings.free_surface;
   campaign.description = fmt::format(
       "CFD captive campaign '{}' of {}: case {}, {}, hull loads on the moving mesh", f.name,
@@ -561,7 +561,7 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
   std::vector<std::vector<CaptiveSample>> all;
   for (const Job& j : jobs) {
     all.push_back(ReadSamples(j.dir / "result.h5", RigidMotion(j.cfd_motion)));
-    ident::CaptiveRun run;
+    data::CaptiveRun run;
     run.name = j.name;
     run.motion = j.motion;
     run.includes_rigid_body_inertia = false;
@@ -574,7 +574,7 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
     }
     campaign.runs.push_back(std::move(run));
   }
-  ident::WriteCampaignH5(campaign, summary.output);
+  data::WriteCampaignH5(campaign, summary.output);
   data::H5Writer w(summary.output, data::H5Writer::Mode::kAppend);
   w.SetAttribute("/", "solver", "cfd");
   w.SetAttribute("/", "case", f.cfd.case_file.string());

@@ -18,10 +18,10 @@
 #include <sstream>
 
 #include "cfd/run/run_case.h"
+#include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "identification/campaign_file.h"
-#include "identification/captive_io.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
@@ -60,7 +60,7 @@ CampaignRunOptions Quiet() {
 }
 
 void ExpectSameFile(const fs::path& a, const fs::path& b) {
-  const ident::CaptiveCampaign ca = ident::ReadCampaignH5(a), cb = ident::ReadCampaignH5(b);
+  const data::CaptiveCampaign ca = data::ReadCampaignH5(a), cb = data::ReadCampaignH5(b);
   ASSERT_EQ(ca.runs.size(), cb.runs.size());
   const data::H5Reader ra(a), rb(b);
   for (std::size_t r = 0; r < ca.runs.size(); ++r) {
@@ -158,10 +158,10 @@ TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
       tmp / "c", "  yaw_drift_deg: [5]\n  circular: [{drift_deg: 0, r_prime: 0.3}]\n"));
   const CampaignRunSummary s = RunCfdCampaign(f, Quiet());
   ASSERT_TRUE(s.complete);
-  const ident::CaptiveCampaign c = ident::ReadCampaignH5(s.output);  // validates the schema
+  const data::CaptiveCampaign c = data::ReadCampaignH5(s.output);  // validates the schema
   ASSERT_EQ(c.runs.size(), 7u);
-  EXPECT_EQ(c.runs[5].motion.kind, ident::MotionKind::kYawDrift);
-  EXPECT_EQ(c.runs[6].motion.kind, ident::MotionKind::kCircularMotion);
+  EXPECT_EQ(c.runs[5].motion.kind, data::MotionKind::kYawDrift);
+  EXPECT_EQ(c.runs[6].motion.kind, data::MotionKind::kCircularMotion);
   EXPECT_EQ(c.ship.name, "block2d");
   EXPECT_DOUBLE_EQ(c.ship.mass, 500.0);
   auto last = [&](const std::string& name, int channel) {
@@ -213,10 +213,10 @@ TEST(CfdCampaign, MotionRampsOverFewerPeriodsThanTheAnalysisDiscards) {
   EXPECT_EQ(f.cfd.motion_ramp_periods, 1);
   const CampaignRunSummary s = RunCfdCampaign(f, Quiet());
   ASSERT_TRUE(s.complete);
-  const ident::CaptiveCampaign c = ident::ReadCampaignH5(s.output);
+  const data::CaptiveCampaign c = data::ReadCampaignH5(s.output);
   ASSERT_EQ(c.runs.size(), 1u);
-  const ident::MotionParameters& m = c.runs[0].motion;
-  EXPECT_EQ(m.kind, ident::MotionKind::kPureSway);
+  const data::MotionParameters& m = c.runs[0].motion;
+  EXPECT_EQ(m.kind, data::MotionKind::kPureSway);
   EXPECT_NEAR(m.t_ramp, 2 * m.Period(), 1e-12);
   EXPECT_EQ(c.runs[0].time.size(), 3u * 40u);
   const data::H5Reader r(tmp / "c/runs" / c.runs[0].name / "result.h5");
@@ -304,10 +304,10 @@ TEST(CfdCampaign, AJobAndAKelvinRunOfTheSameCaseAgree) {
   std::ofstream(tmp / "c" / "campaign.yaml") << tests;
   const ident::CampaignFile f = ident::LoadCampaignFile(tmp / "c" / "campaign.yaml");
   ASSERT_TRUE(RunCfdCampaign(f, Quiet()).complete);
-  const ident::CaptiveCampaign campaign = ident::ReadCampaignH5(f.cfd.directory / (f.name + ".h5"));
-  const auto drift = std::find_if(campaign.runs.begin(), campaign.runs.end(), [](const ident::CaptiveRun& r) {
-    return r.motion.kind == ident::MotionKind::kStaticDrift;
-  });
+  const data::CaptiveCampaign campaign = data::ReadCampaignH5(f.cfd.directory / (f.name + ".h5"));
+  const auto drift = std::find_if(
+      campaign.runs.begin(), campaign.runs.end(),
+      [](const data::CaptiveRun& r) { return r.motion.kind == data::MotionKind::kStaticDrift; });
   ASSERT_NE(drift, campaign.runs.end());
 
   std::string text = ReadText(DataDir() / "block2d_case.yaml");

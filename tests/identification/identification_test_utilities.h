@@ -7,7 +7,8 @@
 
 namespace kelvin::ident::fixtures {
 
-inline CaptiveCampaign StandardCampaign(const sim::ShipParameters& ship, bool combined, bool inertia = true) {
+inline data::CaptiveCampaign StandardCampaign(const sim::ShipParameters& ship, bool combined,
+                                              bool inertia = true) {
   VirtualCaptiveOptions o;
   o.include_rigid_body_inertia = inertia;
   return GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, combined), o);

@@ -18,8 +18,8 @@ namespace {
 
 using sim::testing::Kvlcc2;
 
-CaptiveShip UnitShip() {
-  CaptiveShip s;
+data::CaptiveShip UnitShip() {
+  data::CaptiveShip s;
   s.name = "unit";
   s.Lpp = 2.0;
   s.d = 0.5;
@@ -33,10 +33,10 @@ CaptiveShip UnitShip() {
 // garbage during the ramp-up: the analysis must return the first harmonic
 // exactly, because it uses whole periods after t_ramp only.
 TEST(PmmAnalysisTest, FirstHarmonicOverWholePeriodsAfterRamp) {
-  const CaptiveShip ship = UnitShip();
-  CaptiveRun run;
+  const data::CaptiveShip ship = UnitShip();
+  data::CaptiveRun run;
   run.name = "synthetic";
-  run.motion.kind = MotionKind::kPureSway;
+  run.motion.kind = data::MotionKind::kPureSway;
   run.motion.U = 1.0;
   run.motion.y_a = 0.1;
   run.motion.omega = 0.8;

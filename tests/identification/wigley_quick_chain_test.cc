@@ -39,7 +39,7 @@ TEST(WigleyQuickChain, CampaignAndShipFilesDescribeTheSameHull) {
   EXPECT_GE(f.design.drift_angles.size(), 2u);
   EXPECT_GE(f.design.sway_amplitudes.size(), 1u);
   EXPECT_GE(f.design.yaw_amplitudes.size(), 1u);
-  const CaptiveShip campaign_ship = LoadCaptiveShip(f.ship_file);
+  const data::CaptiveShip campaign_ship = LoadCaptiveShip(f.ship_file);
   const sim::ShipParameters ship = sim::LoadShip(Data() / "ships/wigley.yaml");
   EXPECT_DOUBLE_EQ(ship.principal.Lpp, campaign_ship.Lpp);
   EXPECT_DOUBLE_EQ(ship.principal.d, campaign_ship.d);

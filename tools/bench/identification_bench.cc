@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "identification/captive_io.h"
+#include "data/schema/captive_io.h"
 #include "identification/joint_fit.h"
 #include "identification/virtual_captive.h"
 #include "tools/bench/markdown_section.h"
@@ -83,9 +83,9 @@ int main(int argc, char** argv) {
   o.samples_per_period = 200;
   o.steady_duration = 20.0;
   o.steady_rate = 50.0;
-  CaptiveCampaign campaign = GenerateCampaign(model, d, o);
+  kelvin::data::CaptiveCampaign campaign = GenerateCampaign(model, d, o);
   AddForceNoise(campaign, 0.05, 1);
-  if (!campaign_out.empty()) WriteCampaignH5(campaign, campaign_out);
+  if (!campaign_out.empty()) kelvin::data::WriteCampaignH5(campaign, campaign_out);
 
   constexpr int kRepeats = 5;
   std::vector<double> fit_times, fit_cpu, peer_times;

@@ -11,9 +11,9 @@
 #include <string>
 
 #include "cfd/campaign/cfd_campaign.h"
+#include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
 #include "identification/campaign_file.h"
-#include "identification/captive_io.h"
 #include "tools/kelvin/commands.h"
 
 namespace kelvin::cli {
@@ -67,13 +67,13 @@ void RunCaptive(const CaptiveArgs& a) {
   if (a.jobs > 0 || a.stop_after_steps > 0 || !a.run.empty()) {
     throw ArgumentError("--jobs, --stop-after-steps and --run are for campaigns with solver: cfd");
   }
-  const ident::CaptiveCampaign campaign = ident::RunCampaign(file);
+  const data::CaptiveCampaign campaign = ident::RunCampaign(file);
   const std::string out = a.output.empty() ? "results/" + file.name + ".h5" : a.output;
-  ident::WriteCampaignH5(campaign, out);
+  data::WriteCampaignH5(campaign, out);
   fmt::print("campaign '{}' ({} runs, solver mmg: virtual captive tests of {})\n", file.name,
              campaign.runs.size(), file.ship_file.string());
   for (const auto& run : campaign.runs) {
-    fmt::print("  {:<24} {:<16} {} samples\n", run.name, ident::MotionKindName(run.motion.kind),
+    fmt::print("  {:<24} {:<16} {} samples\n", run.name, data::MotionKindName(run.motion.kind),
                run.time.size());
   }
   fmt::print("  written: {}\n", out);
