@@ -20,10 +20,10 @@
 #include "data/report/progress.h"
 #include "data/schema/atomic_file.h"
 #include "data/schema/captive_io.h"
+#include "data/schema/captive_plan.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
-#include "identification/virtual_captive.h"
 
 extern char** environ;
 
@@ -68,12 +68,12 @@ PrescribedMotion ToPrescribed(data::MotionKind kind) {
   return PrescribedMotion::kStaticDrift;
 }
 
-std::vector<Job> PlanJobs(const ident::CampaignFile& f, const data::CaptiveShip& ship,
+std::vector<Job> PlanJobs(const data::CampaignFile& f, const data::CaptiveShip& ship,
                           double case_dt) {
-  ident::CampaignDesign design = f.design;
+  data::CampaignDesign design = f.design;
   design.U = f.speed;
   std::vector<Job> jobs;
-  for (const ident::PlannedRun& run : ident::PlanRuns(design, ship.Lpp, f.sampling)) {
+  for (const data::PlannedRun& run : data::PlanRuns(design, ship.Lpp, f.sampling)) {
     Job job;
     job.name = run.name;
     job.motion = run.motion;
@@ -216,7 +216,7 @@ std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
 // --- one run in this process -------------------------------------------------
 
 struct Context {
-  const ident::CampaignFile& file;
+  const data::CampaignFile& file;
   const CaseSettings& settings;  // of the campaign's case file
   const data::CaptiveShip& ship;
   long budget = 0;    // > 0: steps allowed in this call
@@ -379,7 +379,7 @@ void ReadProgressFile(Job& job) {
   if (in >> step >> steps) job.step = step;
 }
 
-pid_t SpawnWorker(const ident::CampaignFile& f, const fs::path& exe, Job& job) {
+pid_t SpawnWorker(const data::CampaignFile& f, const fs::path& exe, Job& job) {
   fs::create_directories(job.dir);
   const std::string log = (job.dir / "log.txt").string();
   posix_spawn_file_actions_t actions;
@@ -412,11 +412,11 @@ std::string LastLine(const fs::path& path) {
 
 }  // namespace
 
-CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRunOptions& options) {
-  if (f.solver != ident::CampaignFile::Solver::kCfd) {
+CampaignRunSummary RunCfdCampaign(const data::CampaignFile& f, const CampaignRunOptions& options) {
+  if (f.solver != data::CampaignFile::Solver::kCfd) {
     throw ConfigError(f.path.string() + ": campaign.solver is not 'cfd'");
   }
-  const data::CaptiveShip ship = ident::LoadCaptiveShip(f.ship_file);
+  const data::CaptiveShip ship = data::LoadCaptiveShip(f.ship_file);
   if (!(f.speed > 0))
     throw ConfigError(f.path.string() + ": campaign.speed: expected the carriage speed in m/s");
   const CaseSettings settings =

@@ -23,8 +23,8 @@ std::filesystem::path ShipFile() { return testing::SourceDir() / "data/ships/kvl
 
 data::CaptiveCampaign Campaign() {
   const sim::ShipParameters ship = sim::LoadShip(ShipFile());
-  return GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, true),
-                          {});
+  return GenerateCampaign(sim::MmgModel<double>(ship),
+                          data::StandardDesign(ship.approach_speed, true), {});
 }
 
 TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {

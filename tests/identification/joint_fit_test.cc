@@ -189,7 +189,7 @@ TEST(JointFitTest, UnexcitedCrossTermsAreFlaggedWithModelError) {
 // the cross terms (steady v' and r' together).
 TEST(JointFitTest, CircularMotionRunsIdentifyCrossTerms) {
   const sim::ShipParameters ship = Kvlcc2();
-  CampaignDesign d = StandardDesign(ship.approach_speed, false);
+  data::CampaignDesign d = data::StandardDesign(ship.approach_speed, false);
   for (double beta : {-0.2, -0.1, 0.0, 0.1, 0.2}) {
     for (double r : {0.2, 0.4, 0.6}) d.circular.push_back({beta, r});
   }

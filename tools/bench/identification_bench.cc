@@ -72,13 +72,13 @@ int main(int argc, char** argv) {
   // 10 runs, each with 1000 analysed samples: 2 static drift (20 s at 50 Hz
   // after the ramp), 2 pure sway, 2 pure yaw, 4 yaw with drift (5 periods of
   // 200 samples after one ramp-up period).
-  CampaignDesign d;
+  kelvin::data::CampaignDesign d;
   d.U = ship.approach_speed;
   d.drift_angles = {10 * kDeg, 20 * kDeg};
   d.sway_amplitudes = {0.1, 0.2};
   d.yaw_amplitudes = {0.3, 0.6};
   d.yaw_drift_angles = {4 * kDeg, 8 * kDeg, 12 * kDeg, 16 * kDeg};
-  VirtualCaptiveOptions o;
+  kelvin::data::VirtualCaptiveOptions o;
   o.periods = 5;
   o.samples_per_period = 200;
   o.steady_duration = 20.0;

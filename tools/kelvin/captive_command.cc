@@ -11,9 +11,10 @@
 #include <string>
 
 #include "cfd/campaign/cfd_campaign.h"
+#include "data/schema/campaign_file.h"
 #include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
-#include "identification/campaign_file.h"
+#include "identification/virtual_captive.h"
 #include "tools/kelvin/commands.h"
 
 namespace kelvin::cli {
@@ -35,7 +36,7 @@ std::filesystem::path SelfExecutable() {
   return ec ? std::filesystem::path() : self;
 }
 
-void RunCfd(const ident::CampaignFile& file, const CaptiveArgs& a) {
+void RunCfd(const data::CampaignFile& file, const CaptiveArgs& a) {
   cfd::CampaignRunOptions o;
   o.jobs = a.jobs;
   o.stop_after_steps = a.stop_after_steps;
@@ -59,8 +60,8 @@ void RunCfd(const ident::CampaignFile& file, const CaptiveArgs& a) {
 }
 
 void RunCaptive(const CaptiveArgs& a) {
-  const ident::CampaignFile file = ident::LoadCampaignFile(a.campaign_file);
-  if (file.solver == ident::CampaignFile::Solver::kCfd) {
+  const data::CampaignFile file = data::LoadCampaignFile(a.campaign_file);
+  if (file.solver == data::CampaignFile::Solver::kCfd) {
     RunCfd(file, a);
     return;
   }

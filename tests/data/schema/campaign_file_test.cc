@@ -1,6 +1,7 @@
-// Campaign files: the repository's KVLCC2 campaign loads and runs, and every
-// bad value is one clear error naming the file, key and expectation.
-#include "identification/campaign_file.h"
+// Campaign files: the repository's KCS campaign plans the published PMM
+// conditions, and every bad value is one clear error naming the file, key and
+// expectation.
+#include "data/schema/campaign_file.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,26 +9,15 @@
 #include <cmath>
 #include <fstream>
 
+#include "data/schema/captive_plan.h"
 #include "data/schema/errors.h"
-#include "identification/virtual_captive.h"
 #include "tests/test_utilities/test_utilities.h"
 
-namespace kelvin::ident {
+namespace kelvin::data {
 namespace {
 
 using kelvin::testing::ScopedTempDir;
 using ::testing::HasSubstr;
-
-TEST(CampaignFileTest, RepositoryCampaignRuns) {
-  const CampaignFile f = LoadCampaignFile(kelvin::testing::SourceDir() / "data/cases/kvlcc2_virtual_captive.yaml");
-  EXPECT_EQ(f.name, "kvlcc2_virtual_captive");
-  EXPECT_EQ(f.design.drift_angles.size(), 7u);
-  EXPECT_NEAR(f.design.drift_angles[1], 2.5 * M_PI / 180, 1e-15);
-  EXPECT_EQ(f.design.sway_amplitudes, (std::vector<double>{0.1, 0.2}));
-  const data::CaptiveCampaign c = RunCampaign(f);
-  EXPECT_EQ(c.runs.size(), 13u);  // 7 drift + 2 sway + 2 yaw + 2 yaw with drift
-  EXPECT_EQ(c.ship.name, "KVLCC2");
-}
 
 // The KCS campaign definition plans the PMM tests of the published LFS study
 // (SIMMAN 2014 KCS PMM tests by FORCE Technology, 1:52.667, as given in
@@ -41,7 +31,7 @@ TEST(CampaignFileTest, RepositoryCampaignRuns) {
 TEST(CampaignFileTest, KcsCampaignPlansThePublishedPmmConditions) {
   const CampaignFile f = LoadCampaignFile(kelvin::testing::SourceDir() / "data/cases/captive_cfd/kcs_campaign.yaml");
   EXPECT_EQ(f.solver, CampaignFile::Solver::kCfd);
-  const data::CaptiveShip ship = LoadCaptiveShip(f.ship_file);
+  const CaptiveShip ship = LoadCaptiveShip(f.ship_file);
   EXPECT_NEAR(ship.Lpp, 4.3671, 1e-12);
   EXPECT_NEAR(f.cfd.centre[0], ship.Lpp / 2, 1e-5);
   CampaignDesign design = f.design;
@@ -49,19 +39,18 @@ TEST(CampaignFileTest, KcsCampaignPlansThePublishedPmmConditions) {
   int sway = 0, yaw = 0;
   bool drift5 = false;
   for (const PlannedRun& run : PlanRuns(design, ship.Lpp, f.sampling)) {
-    const data::MotionParameters& m = run.motion;
+    const MotionParameters& m = run.motion;
     EXPECT_NEAR(m.U, 1.701, 1e-12) << run.name;
-    if (m.kind == data::MotionKind::kPureSway) {
+    if (m.kind == MotionKind::kPureSway) {
       ++sway;
       EXPECT_NEAR(m.y_a, 0.127, 0.001 * 0.127) << run.name;
       EXPECT_NEAR(m.Period(), 13.33, 0.001 * 13.33) << run.name;
-    } else if (m.kind == data::MotionKind::kPureYaw) {
+    } else if (m.kind == MotionKind::kPureYaw) {
       ++yaw;
       EXPECT_NEAR(m.psi_a * 180 / M_PI, 4.7, 0.001 * 4.7) << run.name;
       EXPECT_NEAR(m.Period(), 13.33, 0.001 * 13.33) << run.name;
       EXPECT_NEAR(m.U * m.psi_a / m.omega, 0.297, 0.005 * 0.297) << run.name;
-    } else if (m.kind == data::MotionKind::kStaticDrift &&
-               std::abs(m.beta * 180 / M_PI - 5.0) < 1e-9) {
+    } else if (m.kind == MotionKind::kStaticDrift && std::abs(m.beta * 180 / M_PI - 5.0) < 1e-9) {
       drift5 = true;
     }
   }
@@ -112,4 +101,4 @@ INSTANTIATE_TEST_SUITE_P(
                     "sampling.ramp_periods = 2"}));
 
 }  // namespace
-}  // namespace kelvin::ident
+}  // namespace kelvin::data
