@@ -11,13 +11,14 @@
 
 #include <array>
 
-#include "identification/captive_run.h"
+#include "data/schema/captive_run.h"
 #include "simulator/mmg/mmg_model.h"
 
 namespace kelvin::ident {
 
 template <typename T>
-std::array<T, 3> CaptiveHydrodynamicForce(const sim::MmgModel<T>& model, const BodyKinematics& k) {
+std::array<T, 3> CaptiveHydrodynamicForce(const sim::MmgModel<T>& model,
+                                          const data::BodyKinematics& k) {
   const sim::PlanarForce<T> h = model.HullForces(k.u, k.v, k.r);
   const T m_x = model.AddedMassX(), m_y = model.AddedMassY(), j_z = model.AddedInertiaZ();
   return {h.X - m_x * k.du + m_y * (k.v * k.r), h.Y - m_y * k.dv - m_x * (k.u * k.r),

@@ -152,7 +152,7 @@ void WriteDerivativeYaml(const IdentificationReport& report, const std::filesyst
 
 void WriteDerivativeH5(const IdentificationReport& rep, const std::filesystem::path& path) {
   const JointFitResult& fit = *rep.fit;
-  const CaptiveCampaign& c = *rep.campaign;
+  const data::CaptiveCampaign& c = *rep.campaign;
   data::H5Writer w(path);
   w.SetAttribute("/", "schema", "kelvin.derivatives/1");
   w.SetAttribute("/", "source", rep.source);
@@ -179,10 +179,10 @@ void WriteDerivativeH5(const IdentificationReport& rep, const std::filesystem::p
   w.WriteStrings("/warnings", fit.warnings.empty() ? std::vector<std::string>{""} : fit.warnings,
                  "identifiability and solver warnings");
   for (std::size_t r = 0; r < c.runs.size(); ++r) {
-    const CaptiveRun& run = c.runs[r];
+    const data::CaptiveRun& run = c.runs[r];
     const std::string g = "/runs/" + run.name;
-    const AnalysisWindow win = SelectWindow(run, rep.source);
-    w.SetAttribute(g, "kind", MotionKindName(run.motion.kind));
+    const data::AnalysisWindow win = data::SelectWindow(run, rep.source);
+    w.SetAttribute(g, "kind", data::MotionKindName(run.motion.kind));
     w.SetAttribute(g, "window_begin", static_cast<double>(win.begin));
     w.SetAttribute(g, "window_end", static_cast<double>(win.end));
     const auto measured = HydrodynamicForces(c.ship, run);
@@ -193,7 +193,7 @@ void WriteDerivativeH5(const IdentificationReport& rep, const std::filesystem::p
       const double scale = ch == 2 ? q * c.ship.Lpp : q;
       std::vector<double> mp(measured[ch].size());
       for (std::size_t i = 0; i < mp.size(); ++i) mp[i] = measured[ch][i] / scale;
-      const std::string name(kChannelNames[ch]);
+      const std::string name(data::kChannelNames[ch]);
       w.WriteArray(g + "/measured_" + name, mp, {mp.size()}, "-",
                    "measured hydrodynamic force, nondimensional (rigid-body inertia removed)");
       w.WriteArray(g + "/fitted_" + name, fitted[ch], {fitted[ch].size()}, "-",

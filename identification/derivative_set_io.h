@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "identification/captive_run.h"
+#include "data/schema/captive_run.h"
 #include "identification/joint_fit.h"
 #include "identification/pmm_analysis.h"
 
@@ -17,7 +17,7 @@ namespace kelvin::ident {
 
 struct IdentificationReport {
   std::string source;  // the campaign file(s)
-  const CaptiveCampaign* campaign = nullptr;
+  const data::CaptiveCampaign* campaign = nullptr;
   const JointFitResult* fit = nullptr;
   const PmmAnalysis* pmm = nullptr;  // optional cross-check
 };

@@ -26,7 +26,7 @@ constexpr int kP = kCoefficientCount;
 // One sample of one run: kinematics, measured hydrodynamic force and the
 // weights 1 / (force scale x sigma) per channel.
 struct Sample {
-  BodyKinematics k;
+  data::BodyKinematics k;
   std::array<double, 3> measured{};  // N, N, N m
   std::array<double, 3> weight{};    // 1 / (scale sigma)
 };
@@ -63,7 +63,7 @@ struct PriorResidual {
 };
 
 struct RunData {
-  const CaptiveRun* run = nullptr;
+  const data::CaptiveRun* run = nullptr;
   std::array<double, 3> scale{};         // q U^2, q U^2, q L U^2
   std::array<double, 3> rms_measured{};  // prime
   std::vector<Sample> samples;
@@ -137,14 +137,14 @@ std::string Monomial(int a, int b) {
 
 }  // namespace
 
-std::array<double, kCoefficientCount> JointExcitation(const CaptiveCampaign& campaign,
+std::array<double, kCoefficientCount> JointExcitation(const data::CaptiveCampaign& campaign,
                                                       std::string_view source) {
   std::vector<std::array<double, 2>> vr;  // (v', r') of every analysed sample
   double v_max = 0, r_max = 0;
-  for (const CaptiveRun& run : campaign.runs) {
-    const AnalysisWindow w = SelectWindow(run, source);
+  for (const data::CaptiveRun& run : campaign.runs) {
+    const data::AnalysisWindow w = data::SelectWindow(run, source);
     for (std::size_t i = w.begin; i < w.end; ++i) {
-      const BodyKinematics k = KinematicsAt(run.motion, campaign.ship.Lpp, run.time[i]);
+      const data::BodyKinematics k = data::KinematicsAt(run.motion, campaign.ship.Lpp, run.time[i]);
       const double U = std::hypot(k.u, k.v);
       if (!(U > 0)) continue;
       vr.push_back({k.v / U, k.r * campaign.ship.Lpp / U});
@@ -248,14 +248,15 @@ void JointFitOptions::Validate() const {
 }
 
 std::array<std::vector<double>, 3> ModelForcesPrime(
-    const CaptiveShip& ship, const CaptiveRun& run,
+    const data::CaptiveShip& ship, const data::CaptiveRun& run,
     const sim::HullCoefficients<double>& coefficients) {
   const sim::MmgModel<double> model(HullShipFrom(ship), coefficients);
   const double q = ship.ForceScale() * run.motion.U * run.motion.U;
   std::array<std::vector<double>, 3> out;
   for (auto& o : out) o.resize(run.time.size());
   for (std::size_t i = 0; i < run.time.size(); ++i) {
-    const auto f = CaptiveHydrodynamicForce(model, KinematicsAt(run.motion, ship.Lpp, run.time[i]));
+    const auto f =
+        CaptiveHydrodynamicForce(model, data::KinematicsAt(run.motion, ship.Lpp, run.time[i]));
     out[0][i] = f[0] / q;
     out[1][i] = f[1] / q;
     out[2][i] = f[2] / (q * ship.Lpp);
@@ -263,26 +264,26 @@ std::array<std::vector<double>, 3> ModelForcesPrime(
   return out;
 }
 
-JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOptions& options,
+JointFitResult FitCampaign(const data::CaptiveCampaign& campaign, const JointFitOptions& options,
                            std::string_view source) {
   options.Validate();
-  ValidateCampaign(campaign, source);
-  const CaptiveShip& ship = campaign.ship;
+  data::ValidateCampaign(campaign, source);
+  const data::CaptiveShip& ship = campaign.ship;
   const sim::ShipParameters hull_ship = HullShipFrom(ship);
 
   // Samples of every run's analysis window, with the inertia removed.
   std::vector<RunData> runs;
   runs.reserve(campaign.runs.size());
-  for (const CaptiveRun& run : campaign.runs) {
+  for (const data::CaptiveRun& run : campaign.runs) {
     RunData rd;
     rd.run = &run;
-    const AnalysisWindow w = SelectWindow(run, source);
+    const data::AnalysisWindow w = data::SelectWindow(run, source);
     const auto f = HydrodynamicForces(ship, run);
     const double q = ship.ForceScale() * run.motion.U * run.motion.U;
     rd.scale = {q, q, q * ship.Lpp};
     for (std::size_t i = w.begin; i < w.end; ++i) {
       Sample s;
-      s.k = KinematicsAt(run.motion, ship.Lpp, run.time[i]);
+      s.k = data::KinematicsAt(run.motion, ship.Lpp, run.time[i]);
       for (int c = 0; c < 3; ++c) {
         s.measured[c] = f[c][i];
         rd.rms_measured[c] += (f[c][i] / rd.scale[c]) * (f[c][i] / rd.scale[c]);
@@ -310,7 +311,7 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     campaign_rms[c] = std::sqrt(campaign_rms[c] / static_cast<double>(campaign_samples));
     if (!(campaign_rms[c] > 0)) {
       throw DataFileError(fmt::format("{}: channel '{}' is identically zero in every run", source,
-                                      kChannelNames[c]));
+                                      data::kChannelNames[c]));
     }
   }
   std::vector<std::array<double, 3>> reference(runs.size());
@@ -480,7 +481,7 @@ JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOption
     for (std::size_t r = 0; r < runs.size(); ++r) {
       RunFitStatistics st;
       st.run = runs[r].run->name;
-      st.kind = std::string(MotionKindName(runs[r].run->motion.kind));
+      st.kind = std::string(data::MotionKindName(runs[r].run->motion.kind));
       st.samples = static_cast<int>(runs[r].samples.size());
       std::array<std::vector<double>, 3> abs_dev;
       for (std::size_t i = 0; i < runs[r].samples.size(); ++i) {

@@ -50,7 +50,7 @@
 #include <string>
 #include <vector>
 
-#include "identification/captive_run.h"
+#include "data/schema/captive_run.h"
 #include "simulator/mmg/ship_parameters.h"
 
 namespace kelvin::ident {
@@ -143,7 +143,7 @@ struct JointFitResult {
 // Fits the campaign. `source` names it in error messages. Throws
 // kelvin::DataFileError for an invalid campaign (ValidateCampaign) and
 // kelvin::ArgumentError for invalid options.
-JointFitResult FitCampaign(const CaptiveCampaign& campaign, const JointFitOptions& options,
+JointFitResult FitCampaign(const data::CaptiveCampaign& campaign, const JointFitOptions& options,
                            std::string_view source);
 
 // Index of a coefficient name in HullCoefficients::kNames, or -1.
@@ -153,13 +153,13 @@ int CoefficientIndex(std::string_view name);
 // samples of the campaign: 1 for terms of one variable that the campaign
 // moves, 0 when a factor is never excited, NaN for terms without v', r'
 // factors (R0_prime, added masses).
-std::array<double, kCoefficientCount> JointExcitation(const CaptiveCampaign& campaign,
+std::array<double, kCoefficientCount> JointExcitation(const data::CaptiveCampaign& campaign,
                                                       std::string_view source);
 
 // Modelled nondimensional hydrodynamic forces of a run at every sample (for
 // plots and residual checks), with the given coefficients.
 std::array<std::vector<double>, 3> ModelForcesPrime(
-    const CaptiveShip& ship, const CaptiveRun& run,
+    const data::CaptiveShip& ship, const data::CaptiveRun& run,
     const sim::HullCoefficients<double>& coefficients);
 
 }  // namespace kelvin::ident

@@ -9,25 +9,26 @@ namespace kelvin::ident {
 double HarmonicComponents::Amplitude() const { return std::hypot(in_phase, quadrature); }
 double HarmonicComponents::Phase() const { return std::atan2(quadrature, in_phase); }
 
-std::array<std::vector<double>, 3> HydrodynamicForces(const CaptiveShip& ship,
-                                                      const CaptiveRun& run) {
+std::array<std::vector<double>, 3> HydrodynamicForces(const data::CaptiveShip& ship,
+                                                      const data::CaptiveRun& run) {
   std::array<std::vector<double>, 3> f = run.force;
   if (!run.includes_rigid_body_inertia) return f;
   for (std::size_t i = 0; i < run.time.size(); ++i) {
     const std::array<double, 3> rb =
-        RigidBodyInertia(ship, KinematicsAt(run.motion, ship.Lpp, run.time[i]));
+        data::RigidBodyInertia(ship, data::KinematicsAt(run.motion, ship.Lpp, run.time[i]));
     for (int c = 0; c < 3; ++c) f[c][i] += rb[c];
   }
   return f;
 }
 
-RunAnalysis AnalyseRun(const CaptiveShip& ship, const CaptiveRun& run, std::string_view source) {
+RunAnalysis AnalyseRun(const data::CaptiveShip& ship, const data::CaptiveRun& run,
+                       std::string_view source) {
   RunAnalysis a;
   a.run = run.name;
   a.kind = run.motion.kind;
-  a.window = SelectWindow(run, source);
+  a.window = data::SelectWindow(run, source);
   const auto f = HydrodynamicForces(ship, run);
-  const bool harmonic = IsHarmonic(run.motion.kind);
+  const bool harmonic = data::IsHarmonic(run.motion.kind);
   const std::size_t n = a.window.end - a.window.begin;
   // Least squares on [1, cos, sin] over whole periods: the discrete Fourier
   // coefficients for uniform sampling, and still unbiased when it is not.
@@ -74,10 +75,10 @@ std::vector<double> PowerFit(const std::vector<double>& x, const std::vector<dou
 
 }  // namespace
 
-PmmAnalysis AnalyseCampaign(const CaptiveCampaign& campaign, std::string_view source) {
-  ValidateCampaign(campaign, source);
+PmmAnalysis AnalyseCampaign(const data::CaptiveCampaign& campaign, std::string_view source) {
+  data::ValidateCampaign(campaign, source);
   PmmAnalysis out;
-  const CaptiveShip& ship = campaign.ship;
+  const data::CaptiveShip& ship = campaign.ship;
   std::vector<double> drift_v, drift_x, drift_y, drift_n;
   // name -> (amplitude^2, value) for the zero-amplitude extrapolation.
   std::map<std::string, std::vector<std::pair<double, double>>> by_amplitude;
@@ -85,19 +86,19 @@ PmmAnalysis AnalyseCampaign(const CaptiveCampaign& campaign, std::string_view so
     out.estimates.push_back({name, run, amplitude, value});
     by_amplitude[name].push_back({amplitude * amplitude, value});
   };
-  for (const CaptiveRun& run : campaign.runs) {
+  for (const data::CaptiveRun& run : campaign.runs) {
     RunAnalysis a = AnalyseRun(ship, run, source);
-    const MotionParameters& m = run.motion;
+    const data::MotionParameters& m = run.motion;
     const double omega_p = m.omega * ship.Lpp / m.U;  // prime frequency
     const auto& fp = a.force_prime;
     switch (m.kind) {
-      case MotionKind::kStaticDrift:
+      case data::MotionKind::kStaticDrift:
         drift_v.push_back(-std::sin(m.beta));
         drift_x.push_back(fp[0].mean);
         drift_y.push_back(fp[1].mean);
         drift_n.push_back(fp[2].mean);
         break;
-      case MotionKind::kPureSway: {
+      case data::MotionKind::kPureSway: {
         // v' = -v'_a cos(w t), dv' = v'_a w' sin(w t) (dv' = dv L / U^2).
         const double v_a = m.y_a * m.omega / m.U;
         add("Y_v", run.name, v_a, -fp[1].in_phase / v_a);
@@ -106,7 +107,7 @@ PmmAnalysis AnalyseCampaign(const CaptiveCampaign& campaign, std::string_view so
         add("N_vdot", run.name, v_a, fp[2].quadrature / (v_a * omega_p));
         break;
       }
-      case MotionKind::kPureYaw: {
+      case data::MotionKind::kPureYaw: {
         // r' = -r'_a sin(w t), dr' = -r'_a w' cos(w t) (dr' = dr L^2 / U^2).
         const double r_a = m.psi_a * omega_p;
         add("Y_r", run.name, r_a, -fp[1].quadrature / r_a);
@@ -115,8 +116,8 @@ PmmAnalysis AnalyseCampaign(const CaptiveCampaign& campaign, std::string_view so
         add("N_rdot", run.name, r_a, -fp[2].in_phase / (r_a * omega_p));
         break;
       }
-      case MotionKind::kYawDrift:
-      case MotionKind::kCircularMotion:
+      case data::MotionKind::kYawDrift:
+      case data::MotionKind::kCircularMotion:
         break;  // used by the joint fit only
     }
     out.runs.push_back(std::move(a));

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "identification/captive_run.h"
+#include "data/schema/captive_run.h"
 
 namespace kelvin::ident {
 
@@ -34,8 +34,8 @@ struct HarmonicComponents {
 
 struct RunAnalysis {
   std::string run;
-  MotionKind kind = MotionKind::kStaticDrift;
-  AnalysisWindow window;
+  data::MotionKind kind = data::MotionKind::kStaticDrift;
+  data::AnalysisWindow window;
   // Hydrodynamic X [N], Y [N], N [N m] (rigid-body inertia removed).
   std::array<HarmonicComponents, 3> force;
   // The same divided by 0.5 rho L d U^2 (forces) and 0.5 rho L^2 d U^2 (N).
@@ -44,10 +44,11 @@ struct RunAnalysis {
 
 // The hydrodynamic force series of a run: the measured series plus M_RB a
 // when the run includes rigid-body inertia, unchanged otherwise.
-std::array<std::vector<double>, 3> HydrodynamicForces(const CaptiveShip& ship,
-                                                      const CaptiveRun& run);
+std::array<std::vector<double>, 3> HydrodynamicForces(const data::CaptiveShip& ship,
+                                                      const data::CaptiveRun& run);
 
-RunAnalysis AnalyseRun(const CaptiveShip& ship, const CaptiveRun& run, std::string_view source);
+RunAnalysis AnalyseRun(const data::CaptiveShip& ship, const data::CaptiveRun& run,
+                       std::string_view source);
 
 struct ClassicalEstimate {
   std::string name;      // e.g. "Y_v", "N_rdot" (prime)
@@ -65,6 +66,6 @@ struct PmmAnalysis {
 // regression (needs >= 2 drift angles; X' = -R0' + X_vv v'^2 + X_vvvv v'^4
 // with >= 3, Y' = Y_v v' + Y_vvv v'^3 and N' alike), and per-run pure sway
 // and pure yaw values. Throws DataFileError for runs that fail validation.
-PmmAnalysis AnalyseCampaign(const CaptiveCampaign& campaign, std::string_view source);
+PmmAnalysis AnalyseCampaign(const data::CaptiveCampaign& campaign, std::string_view source);
 
 }  // namespace kelvin::ident

@@ -19,11 +19,11 @@
 #include "cfd/run/run_driver.h"
 #include "data/report/progress.h"
 #include "data/schema/atomic_file.h"
+#include "data/schema/captive_io.h"
+#include "data/schema/captive_plan.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
-#include "identification/captive_io.h"
-#include "identification/virtual_captive.h"
 
 extern char** environ;
 
@@ -41,7 +41,7 @@ constexpr std::array<std::string_view, 9> kExtraChannels = {
 struct Job {
   enum class State { kLeft, kRunning, kDone, kFailed };
   std::string name;
-  ident::MotionParameters motion;  // as the captive schema records it
+  data::MotionParameters motion;  // as the captive schema records it
   MotionOptions cfd_motion;
   double dt = 0.0;
   int steps = 0;
@@ -52,46 +52,46 @@ struct Job {
   pid_t pid = -1;
 };
 
-PrescribedMotion ToPrescribed(ident::MotionKind kind) {
+PrescribedMotion ToPrescribed(data::MotionKind kind) {
   switch (kind) {
-    case ident::MotionKind::kStaticDrift:
+    case data::MotionKind::kStaticDrift:
       return PrescribedMotion::kStaticDrift;
-    case ident::MotionKind::kPureSway:
+    case data::MotionKind::kPureSway:
       return PrescribedMotion::kPureSway;
-    case ident::MotionKind::kPureYaw:
+    case data::MotionKind::kPureYaw:
       return PrescribedMotion::kPureYaw;
-    case ident::MotionKind::kYawDrift:
+    case data::MotionKind::kYawDrift:
       return PrescribedMotion::kYawDrift;
-    case ident::MotionKind::kCircularMotion:
+    case data::MotionKind::kCircularMotion:
       return PrescribedMotion::kCircularMotion;
   }
   return PrescribedMotion::kStaticDrift;
 }
 
-std::vector<Job> PlanJobs(const ident::CampaignFile& f, const ident::CaptiveShip& ship,
+std::vector<Job> PlanJobs(const data::CampaignFile& f, const data::CaptiveShip& ship,
                           double case_dt) {
-  ident::CampaignDesign design = f.design;
+  data::CampaignDesign design = f.design;
   design.U = f.speed;
   std::vector<Job> jobs;
-  for (const ident::PlannedRun& run : ident::PlanRuns(design, ship.Lpp, f.sampling)) {
+  for (const data::PlannedRun& run : data::PlanRuns(design, ship.Lpp, f.sampling)) {
     Job job;
     job.name = run.name;
     job.motion = run.motion;
-    const ident::MotionParameters& m = run.motion;
+    const data::MotionParameters& m = run.motion;
     MotionOptions& o = job.cfd_motion;
     o.kind = ToPrescribed(m.kind);
     o.speed = m.U;
     o.drift_angle = m.beta;
     o.sway_amplitude = m.y_a;
     o.yaw_amplitude = m.psi_a;
-    o.period = ident::IsHarmonic(m.kind) ? m.Period() : 0.0;
+    o.period = data::IsHarmonic(m.kind) ? m.Period() : 0.0;
     o.yaw_rate = m.r_prime * m.U / ship.Lpp;
     // Harmonic runs ramp the motion up over motion_ramp_periods periods; the
     // captive schema's t_ramp (what the analysis discards) stays
     // ramp_periods periods. Both laws agree for t >= t_ramp.
-    o.ramp_time = ident::IsHarmonic(m.kind) ? f.cfd.motion_ramp_periods * m.Period() : m.t_ramp;
+    o.ramp_time = data::IsHarmonic(m.kind) ? f.cfd.motion_ramp_periods * m.Period() : m.t_ramp;
     o.centre = Vector3(f.cfd.centre[0], f.cfd.centre[1], f.cfd.centre[2]);
-    if (ident::IsHarmonic(m.kind)) {
+    if (data::IsHarmonic(m.kind)) {
       job.dt = o.period / f.cfd.steps_per_period;
       job.steps = (f.sampling.ramp_periods + f.sampling.periods) * f.cfd.steps_per_period;
     } else {
@@ -198,7 +198,7 @@ std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
   long remaining = 0;
   for (const Job& j : jobs) {
     out += fmt::format("  {:<30} {:<16} {:<8} {:>6}/{:<6}\n", j.name,
-                       ident::MotionKindName(j.motion.kind), StateName(j.state), j.step, j.steps);
+                       data::MotionKindName(j.motion.kind), StateName(j.state), j.step, j.steps);
     done += j.state == Job::State::kDone;
     running += j.state == Job::State::kRunning;
     left += j.state == Job::State::kLeft;
@@ -216,9 +216,9 @@ std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
 // --- one run in this process -------------------------------------------------
 
 struct Context {
-  const ident::CampaignFile& file;
+  const data::CampaignFile& file;
   const CaseSettings& settings;  // of the campaign's case file
-  const ident::CaptiveShip& ship;
+  const data::CaptiveShip& ship;
   long budget = 0;    // > 0: steps allowed in this call
   long computed = 0;  // steps computed in this call
   std::function<void()> report;
@@ -379,7 +379,7 @@ void ReadProgressFile(Job& job) {
   if (in >> step >> steps) job.step = step;
 }
 
-pid_t SpawnWorker(const ident::CampaignFile& f, const fs::path& exe, Job& job) {
+pid_t SpawnWorker(const data::CampaignFile& f, const fs::path& exe, Job& job) {
   fs::create_directories(job.dir);
   const std::string log = (job.dir / "log.txt").string();
   posix_spawn_file_actions_t actions;
@@ -410,16 +410,23 @@ std::string LastLine(const fs::path& path) {
   return last;
 }
 
-}  // namespace
+// --- the campaign ------------------------------------------------------------
 
-CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRunOptions& options) {
-  if (f.solver != ident::CampaignFile::Solver::kCfd) {
+// The ship of a campaign, after checking that the campaign runs in CFD at a
+// given carriage speed.
+data::CaptiveShip CampaignShip(const data::CampaignFile& f) {
+  if (f.solver != data::CampaignFile::Solver::kCfd) {
     throw ConfigError(f.path.string() + ": campaign.solver is not 'cfd'");
   }
-  const ident::CaptiveShip ship = ident::LoadCaptiveShip(f.ship_file);
+  const data::CaptiveShip ship = data::LoadCaptiveShip(f.ship_file);
   if (!(f.speed > 0))
     throw ConfigError(f.path.string() + ": campaign.speed: expected the carriage speed in m/s");
-  const CaseSettings settings =
+  return ship;
+}
+
+// The settings of the campaign's case, whose density must be the ship's.
+CaseSettings CampaignCaseSettings(const data::CampaignFile& f, const data::CaptiveShip& ship) {
+  CaseSettings settings =
       ReadCaseSettings(data::ConfigNode::LoadFile(f.cfd.case_file), f.cfd.case_file.parent_path());
   const double case_rho = settings.rho;
   if (std::abs(case_rho - ship.rho) > 1e-9 * ship.rho) {
@@ -428,15 +435,12 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
                     "needs one density",
                     f.cfd.case_file.string(), case_rho, ship.rho, f.ship_file.string()));
   }
-  std::vector<Job> jobs = PlanJobs(f, ship, settings.time.dt);
-  const int n_jobs = options.jobs > 0 ? options.jobs : f.cfd.jobs;
-  if (n_jobs > 1 && options.stop_after_steps > 0) {
-    throw ArgumentError(
-        "--stop-after-steps runs the campaign in one process; use it with --jobs 1");
-  }
-  CampaignRunSummary summary;
-  summary.output = options.output.empty() ? f.cfd.directory / (f.name + ".h5") : options.output;
-  summary.runs_total = static_cast<int>(jobs.size());
+  return settings;
+}
+
+// The state of every job from its directory: done when result.h5 exists,
+// otherwise at the step of its progress file.
+void ReadJobStates(std::vector<Job>& jobs) {
   for (Job& j : jobs) {
     if (fs::exists(j.dir / "result.h5")) {
       j.state = Job::State::kDone;
@@ -445,113 +449,202 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
       ReadProgressFile(j);
     }
   }
-  const auto start = Clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  auto last_print = Clock::now() - std::chrono::hours(1);
-  auto print = [&](bool force) {
-    summary.table = Table(jobs, elapsed(), summary.steps_computed);
-    if (!options.progress) return;
-    if (!force && Clock::now() - last_print < std::chrono::seconds(10)) return;
-    last_print = Clock::now();
-    std::fprintf(options.stream, "captive campaign '%s' (cfd):\n%s", f.name.c_str(),
-                 summary.table.c_str());
-    std::fflush(options.stream);
-  };
+}
 
-  Context ctx{f, settings, ship, options.stop_after_steps, 0, {}};
-  if (!options.only_run.empty()) {
-    auto it = std::find_if(jobs.begin(), jobs.end(),
-                           [&](const Job& j) { return j.name == options.only_run; });
-    if (it == jobs.end()) {
-      std::vector<std::string> names;
-      for (const Job& j : jobs) names.push_back(j.name);
-      throw ArgumentError(fmt::format("--run {}: no such run in {} (runs: {})", options.only_run,
-                                      f.path.string(), fmt::join(names, ", ")));
-    }
-    if (it->state != Job::State::kDone) {
-      it->state = Job::State::kRunning;
-      if (ExecuteJob(ctx, *it)) it->state = Job::State::kDone;
-    }
+// The progress table of a campaign: kept in the summary at every update and
+// printed (when the options ask for it) at most every 10 s unless forced.
+class ProgressTable {
+ public:
+  ProgressTable(const data::CampaignFile& f, const CampaignRunOptions& options,
+                const std::vector<Job>& jobs, CampaignRunSummary& summary)
+      : file_(f), options_(options), jobs_(jobs), summary_(summary) {}
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+  void Print(bool force) {
+    summary_.table = Table(jobs_, elapsed(), summary_.steps_computed);
+    if (!options_.progress) return;
+    if (!force && Clock::now() - last_print_ < std::chrono::seconds(10)) return;
+    last_print_ = Clock::now();
+    std::fprintf(options_.stream, "captive campaign '%s' (cfd):\n%s", file_.name.c_str(),
+                 summary_.table.c_str());
+    std::fflush(options_.stream);
+  }
+
+ private:
+  const data::CampaignFile& file_;
+  const CampaignRunOptions& options_;
+  const std::vector<Job>& jobs_;
+  CampaignRunSummary& summary_;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point last_print_ = Clock::now() - std::chrono::hours(1);
+};
+
+// Worker mode (--run): runs just the named job in this process and writes
+// its result; the campaign file is left to the parent.
+CampaignRunSummary RunOnly(Context& ctx, const std::string& name, std::vector<Job>& jobs,
+                           CampaignRunSummary summary) {
+  auto it = std::find_if(jobs.begin(), jobs.end(), [&](const Job& j) { return j.name == name; });
+  if (it == jobs.end()) {
+    std::vector<std::string> names;
+    for (const Job& j : jobs) names.push_back(j.name);
+    throw ArgumentError(fmt::format("--run {}: no such run in {} (runs: {})", name,
+                                    ctx.file.path.string(), fmt::join(names, ", ")));
+  }
+  if (it->state != Job::State::kDone) {
+    it->state = Job::State::kRunning;
+    if (ExecuteJob(ctx, *it)) it->state = Job::State::kDone;
+  }
+  summary.steps_computed = ctx.computed;
+  summary.runs_done = it->state == Job::State::kDone ? 1 : 0;
+  summary.complete = false;
+  return summary;
+}
+
+// Runs the jobs left one after the other in this process; false when the
+// step budget ran out first (the campaign resumes later).
+bool RunSerial(Context& ctx, std::vector<Job>& jobs, CampaignRunSummary& summary,
+               ProgressTable& progress) {
+  ctx.report = [&] {
     summary.steps_computed = ctx.computed;
-    summary.runs_done = it->state == Job::State::kDone ? 1 : 0;
-    summary.complete = false;
-    return summary;
+    progress.Print(false);
+  };
+  progress.Print(true);
+  for (Job& j : jobs) {
+    if (j.state == Job::State::kDone) continue;
+    j.state = Job::State::kRunning;
+    const bool finished = ExecuteJob(ctx, j);
+    summary.steps_computed = ctx.computed;
+    if (!finished) {
+      j.state = Job::State::kLeft;
+      progress.Print(true);
+      return false;
+    }
+    j.state = Job::State::kDone;
+    progress.Print(true);
   }
+  return true;
+}
 
-  if (n_jobs <= 1) {
-    ctx.report = [&] {
-      summary.steps_computed = ctx.computed;
-      print(false);
-    };
-    print(true);
-    for (Job& j : jobs) {
-      if (j.state == Job::State::kDone) continue;
-      j.state = Job::State::kRunning;
-      const bool finished = ExecuteJob(ctx, j);
-      summary.steps_computed = ctx.computed;
-      if (!finished) {
-        j.state = Job::State::kLeft;
-        print(true);
-        return summary;  // stopped by the step budget: resume later
-      }
+// The steps a job has computed since its progress file was last read.
+int AdvanceProgress(Job& job) {
+  const int before = job.step;
+  ReadProgressFile(job);
+  return job.step - before;
+}
+
+// Starts worker processes for up to `slots` jobs left; returns how many.
+int StartWorkers(const data::CampaignFile& f, const fs::path& exe, int slots,
+                 std::vector<Job>& jobs) {
+  int started = 0;
+  for (Job& j : jobs) {
+    if (started >= slots) break;
+    if (j.state != Job::State::kLeft) continue;
+    j.pid = SpawnWorker(f, exe, j);
+    j.state = Job::State::kRunning;
+    ++started;
+  }
+  return started;
+}
+
+// Records the end of worker `pid` (exit status `status`): its job is done
+// when it exited with 0 and wrote result.h5, failed otherwise with the last
+// line of its log. Returns the number of workers that ended (0 or 1).
+int FinishWorker(pid_t pid, int status, std::vector<Job>& jobs, CampaignRunSummary& summary) {
+  int finished = 0;
+  for (Job& j : jobs) {
+    if (j.pid != pid) continue;
+    j.pid = -1;
+    ++finished;
+    summary.steps_computed += AdvanceProgress(j);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(j.dir / "result.h5")) {
       j.state = Job::State::kDone;
-      print(true);
+      j.step = j.steps;
+    } else {
+      j.state = Job::State::kFailed;
+      j.message = LastLine(j.dir / "log.txt");
     }
-  } else {
-    if (options.executable.empty())
-      throw ArgumentError("--jobs > 1 needs the path of the kelvin program");
-    print(true);
-    int running = 0;
-    for (;;) {
-      for (Job& j : jobs) {
-        if (running >= n_jobs) break;
-        if (j.state != Job::State::kLeft) continue;
-        j.pid = SpawnWorker(f, options.executable, j);
-        j.state = Job::State::kRunning;
-        ++running;
-      }
-      if (running == 0) break;
-      int status = 0;
-      const pid_t pid = waitpid(-1, &status, WNOHANG);
-      if (pid > 0) {
-        for (Job& j : jobs) {
-          if (j.pid != pid) continue;
-          j.pid = -1;
-          --running;
-          const int before = j.step;
-          ReadProgressFile(j);
-          summary.steps_computed += j.step - before;
-          if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(j.dir / "result.h5")) {
-            j.state = Job::State::kDone;
-            j.step = j.steps;
-          } else {
-            j.state = Job::State::kFailed;
-            j.message = LastLine(j.dir / "log.txt");
-          }
-        }
-        print(true);
-        continue;
-      }
-      for (Job& j : jobs) {
-        if (j.state != Job::State::kRunning) continue;
-        const int before = j.step;
-        ReadProgressFile(j);
-        summary.steps_computed += j.step - before;
-      }
-      print(false);
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    }
-    std::string failures;
-    for (const Job& j : jobs) {
-      if (j.state == Job::State::kFailed)
-        failures += fmt::format("\n  run '{}': {}", j.name, j.message);
-    }
-    if (!failures.empty())
-      throw InputError("captive campaign '" + f.name + "': runs failed:" + failures);
   }
+  return finished;
+}
 
-  // Every run is done: the campaign file in the captive schema.
-  ident::CaptiveCampaign campaign;
+// Throws InputError naming every failed run and the last line of its log.
+void ThrowIfRunsFailed(const data::CampaignFile& f, const std::vector<Job>& jobs) {
+  std::string failures;
+  for (const Job& j : jobs) {
+    if (j.state == Job::State::kFailed)
+      failures += fmt::format("\n  run '{}': {}", j.name, j.message);
+  }
+  if (!failures.empty())
+    throw InputError("captive campaign '" + f.name + "': runs failed:" + failures);
+}
+
+// Runs the jobs left as `kelvin captive --run` worker processes, at most
+// `n_jobs` at a time, polling their progress files for the table.
+void RunWorkers(const data::CampaignFile& f, const CampaignRunOptions& options, int n_jobs,
+                std::vector<Job>& jobs, CampaignRunSummary& summary, ProgressTable& progress) {
+  if (options.executable.empty())
+    throw ArgumentError("--jobs > 1 needs the path of the kelvin program");
+  progress.Print(true);
+  int running = 0;
+  for (;;) {
+    running += StartWorkers(f, options.executable, n_jobs - running, jobs);
+    if (running == 0) break;
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid > 0) {
+      running -= FinishWorker(pid, status, jobs, summary);
+      progress.Print(true);
+      continue;
+    }
+    for (Job& j : jobs) {
+      if (j.state == Job::State::kRunning) summary.steps_computed += AdvanceProgress(j);
+    }
+    progress.Print(false);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  ThrowIfRunsFailed(f, jobs);
+}
+
+// --- the campaign file -------------------------------------------------------
+
+// The captive run of a finished job: the total hull loads, without the
+// rigid-body inertia (CFD gives the hydrodynamic force alone).
+data::CaptiveRun CaptiveRunOf(const Job& job, const std::vector<CaptiveSample>& samples) {
+  data::CaptiveRun run;
+  run.name = job.name;
+  run.motion = job.motion;
+  run.includes_rigid_body_inertia = false;
+  for (const CaptiveSample& s : samples) {
+    const PlanarLoad total = s.loads.Total();
+    run.time.push_back(s.time);
+    run.force[0].push_back(total.X);
+    run.force[1].push_back(total.Y);
+    run.force[2].push_back(total.N);
+  }
+  return run;
+}
+
+// The pressure and viscous parts and the prime-system loads of one run,
+// beside its X, Y, N.
+void WriteExtraChannels(data::H5Writer& w, const std::string& run,
+                        const std::vector<CaptiveSample>& samples) {
+  for (std::size_t k = 0; k < kExtraChannels.size(); ++k) {
+    std::vector<double> v;
+    for (const CaptiveSample& s : samples) v.push_back(Extra(s, k));
+    const bool prime = k >= 6;
+    w.WriteArray(fmt::format("runs/{}/{}", run, kExtraChannels[k]), v, {v.size()},
+                 prime ? "1" : (k % 3 == 2 ? "N m" : "N"),
+                 prime
+                     ? "prime system: forces / (0.5 rho Lpp T U^2), moment / (0.5 rho Lpp^2 T U^2)"
+                     : (k < 3 ? "pressure part" : "viscous part"));
+  }
+}
+
+// Every run is done: the campaign file in the captive schema, with the
+// solver, the case and the prime draft as attributes and the extra channels.
+void WriteCampaignFile(const data::CampaignFile& f, const data::CaptiveShip& ship,
+                       const CaseSettings& settings, const std::vector<Job>& jobs,
+                       const fs::path& output) {
+  data::CaptiveCampaign campaign;
   const bool free_surface = settings.free_surface;
   campaign.description = fmt::format(
       "CFD captive campaign '{}' of {}: case {}, {}, hull loads on the moving mesh", f.name,
@@ -561,40 +654,44 @@ CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& f, const CampaignRu
   std::vector<std::vector<CaptiveSample>> all;
   for (const Job& j : jobs) {
     all.push_back(ReadSamples(j.dir / "result.h5", RigidMotion(j.cfd_motion)));
-    ident::CaptiveRun run;
-    run.name = j.name;
-    run.motion = j.motion;
-    run.includes_rigid_body_inertia = false;
-    for (const CaptiveSample& s : all.back()) {
-      const PlanarLoad total = s.loads.Total();
-      run.time.push_back(s.time);
-      run.force[0].push_back(total.X);
-      run.force[1].push_back(total.Y);
-      run.force[2].push_back(total.N);
-    }
-    campaign.runs.push_back(std::move(run));
+    campaign.runs.push_back(CaptiveRunOf(j, all.back()));
   }
-  ident::WriteCampaignH5(campaign, summary.output);
-  data::H5Writer w(summary.output, data::H5Writer::Mode::kAppend);
+  data::WriteCampaignH5(campaign, output);
+  data::H5Writer w(output, data::H5Writer::Mode::kAppend);
   w.SetAttribute("/", "solver", "cfd");
   w.SetAttribute("/", "case", f.cfd.case_file.string());
   w.SetAttribute("/", "prime_draft", f.cfd.draft > 0 ? f.cfd.draft : ship.d);
-  for (std::size_t r = 0; r < jobs.size(); ++r) {
-    for (std::size_t k = 0; k < kExtraChannels.size(); ++k) {
-      std::vector<double> v;
-      for (const CaptiveSample& s : all[r]) v.push_back(Extra(s, k));
-      const bool prime = k >= 6;
-      w.WriteArray(
-          fmt::format("runs/{}/{}", jobs[r].name, kExtraChannels[k]), v, {v.size()},
-          prime ? "1" : (k % 3 == 2 ? "N m" : "N"),
-          prime ? "prime system: forces / (0.5 rho Lpp T U^2), moment / (0.5 rho Lpp^2 T U^2)"
-                : (k < 3 ? "pressure part" : "viscous part"));
-    }
-  }
+  for (std::size_t r = 0; r < jobs.size(); ++r) WriteExtraChannels(w, jobs[r].name, all[r]);
   w.Commit();
+}
+
+}  // namespace
+
+CampaignRunSummary RunCfdCampaign(const data::CampaignFile& f, const CampaignRunOptions& options) {
+  const data::CaptiveShip ship = CampaignShip(f);
+  const CaseSettings settings = CampaignCaseSettings(f, ship);
+  std::vector<Job> jobs = PlanJobs(f, ship, settings.time.dt);
+  const int n_jobs = options.jobs > 0 ? options.jobs : f.cfd.jobs;
+  if (n_jobs > 1 && options.stop_after_steps > 0) {
+    throw ArgumentError(
+        "--stop-after-steps runs the campaign in one process; use it with --jobs 1");
+  }
+  CampaignRunSummary summary;
+  summary.output = options.output.empty() ? f.cfd.directory / (f.name + ".h5") : options.output;
+  summary.runs_total = static_cast<int>(jobs.size());
+  ReadJobStates(jobs);
+  ProgressTable progress(f, options, jobs, summary);
+  Context ctx{f, settings, ship, options.stop_after_steps, 0, {}};
+  if (!options.only_run.empty()) return RunOnly(ctx, options.only_run, jobs, summary);
+  if (n_jobs <= 1) {
+    if (!RunSerial(ctx, jobs, summary, progress)) return summary;  // stopped by the step budget
+  } else {
+    RunWorkers(f, options, n_jobs, jobs, summary, progress);
+  }
+  WriteCampaignFile(f, ship, settings, jobs, summary.output);
   summary.runs_done = summary.runs_total;
   summary.complete = true;
-  summary.table = Table(jobs, elapsed(), summary.steps_computed);
+  summary.table = Table(jobs, progress.elapsed(), summary.steps_computed);
   return summary;
 }
 

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "identification/campaign_file.h"
+#include "data/schema/campaign_file.h"
 
 namespace kelvin::cfd {
 
@@ -47,7 +47,7 @@ struct CampaignRunSummary {
 // Runs or resumes the campaign. Throws ConfigError for a bad cfd: section or
 // case (naming the file and key) and InputError when a run diverges (naming
 // the run and its last checkpoint, which stays on disk).
-CampaignRunSummary RunCfdCampaign(const ident::CampaignFile& file,
+CampaignRunSummary RunCfdCampaign(const data::CampaignFile& file,
                                   const CampaignRunOptions& options);
 
 }  // namespace kelvin::cfd

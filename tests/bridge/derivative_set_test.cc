@@ -61,7 +61,7 @@ TEST(DerivativeSet, LoadsTheHullAndThePassingCheck) {
 // a check section is added.
 TEST(DerivativeSet, ReadsTheFileKelvinIdentifyWrites) {
   const sim::ShipParameters ship = Kvlcc2();
-  ident::CaptiveCampaign campaign;
+  data::CaptiveCampaign campaign;
   campaign.ship.name = "KVLCC2";
   ident::JointFitResult fit;
   fit.coefficients = ship.hull;

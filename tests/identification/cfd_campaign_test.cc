@@ -18,10 +18,10 @@
 #include <sstream>
 
 #include "cfd/run/run_case.h"
+#include "data/schema/campaign_file.h"
+#include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
-#include "identification/campaign_file.h"
-#include "identification/captive_io.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
@@ -60,7 +60,7 @@ CampaignRunOptions Quiet() {
 }
 
 void ExpectSameFile(const fs::path& a, const fs::path& b) {
-  const ident::CaptiveCampaign ca = ident::ReadCampaignH5(a), cb = ident::ReadCampaignH5(b);
+  const data::CaptiveCampaign ca = data::ReadCampaignH5(a), cb = data::ReadCampaignH5(b);
   ASSERT_EQ(ca.runs.size(), cb.runs.size());
   const data::H5Reader ra(a), rb(b);
   for (std::size_t r = 0; r < ca.runs.size(); ++r) {
@@ -79,7 +79,7 @@ void ExpectSameFile(const fs::path& a, const fs::path& b) {
 TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
   ScopedTempDir tmp;
   // Uninterrupted.
-  const ident::CampaignFile whole = ident::LoadCampaignFile(WriteCampaign(tmp / "whole"));
+  const data::CampaignFile whole = data::LoadCampaignFile(WriteCampaign(tmp / "whole"));
   const CampaignRunSummary a = RunCfdCampaign(whole, Quiet());
   ASSERT_TRUE(a.complete);
   EXPECT_EQ(a.steps_computed, 3 * 50 + 2 * 120);
@@ -87,7 +87,7 @@ TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
   // Stopped after 75 steps (inside the second run, 5 steps after its last
   // checkpoint), then after 203 more (inside the sway run, 3 steps after its
   // last checkpoint), then resumed.
-  const ident::CampaignFile killed = ident::LoadCampaignFile(WriteCampaign(tmp / "killed"));
+  const data::CampaignFile killed = data::LoadCampaignFile(WriteCampaign(tmp / "killed"));
   CampaignRunOptions o = Quiet();
   o.stop_after_steps = 75;
   const CampaignRunSummary b1 = RunCfdCampaign(killed, o);
@@ -123,7 +123,7 @@ TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
 TEST(CfdCampaign, SurvivesSigkill) {
   ScopedTempDir tmp;
   const CampaignRunSummary a =
-      RunCfdCampaign(ident::LoadCampaignFile(WriteCampaign(tmp / "whole")), Quiet());
+      RunCfdCampaign(data::LoadCampaignFile(WriteCampaign(tmp / "whole")), Quiet());
   ASSERT_TRUE(a.complete);
   const fs::path p = WriteCampaign(tmp / "killed");
   const std::string kelvin = (kelvin::testing::ToolsDir() / "kelvin").string();
@@ -140,7 +140,7 @@ TEST(CfdCampaign, SurvivesSigkill) {
 
 TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
   ScopedTempDir tmp;
-  const ident::CampaignFile serial = ident::LoadCampaignFile(WriteCampaign(tmp / "serial"));
+  const data::CampaignFile serial = data::LoadCampaignFile(WriteCampaign(tmp / "serial"));
   const CampaignRunSummary a = RunCfdCampaign(serial, Quiet());
   ASSERT_TRUE(a.complete);
   const fs::path parallel = WriteCampaign(tmp / "parallel");
@@ -154,14 +154,14 @@ TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
 
 TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
   ScopedTempDir tmp;
-  const ident::CampaignFile f = ident::LoadCampaignFile(WriteCampaign(
+  const data::CampaignFile f = data::LoadCampaignFile(WriteCampaign(
       tmp / "c", "  yaw_drift_deg: [5]\n  circular: [{drift_deg: 0, r_prime: 0.3}]\n"));
   const CampaignRunSummary s = RunCfdCampaign(f, Quiet());
   ASSERT_TRUE(s.complete);
-  const ident::CaptiveCampaign c = ident::ReadCampaignH5(s.output);  // validates the schema
+  const data::CaptiveCampaign c = data::ReadCampaignH5(s.output);  // validates the schema
   ASSERT_EQ(c.runs.size(), 7u);
-  EXPECT_EQ(c.runs[5].motion.kind, ident::MotionKind::kYawDrift);
-  EXPECT_EQ(c.runs[6].motion.kind, ident::MotionKind::kCircularMotion);
+  EXPECT_EQ(c.runs[5].motion.kind, data::MotionKind::kYawDrift);
+  EXPECT_EQ(c.runs[6].motion.kind, data::MotionKind::kCircularMotion);
   EXPECT_EQ(c.ship.name, "block2d");
   EXPECT_DOUBLE_EQ(c.ship.mass, 500.0);
   auto last = [&](const std::string& name, int channel) {
@@ -209,14 +209,14 @@ TEST(CfdCampaign, MotionRampsOverFewerPeriodsThanTheAnalysisDiscards) {
   replace("steps_per_period: 40", "steps_per_period: 40\n  motion_ramp_periods: 1");
   replace("sampling: {periods: 2, ramp_periods: 1}", "sampling: {periods: 1, ramp_periods: 2}");
   std::ofstream(tmp / "c/campaign.yaml") << text;
-  const ident::CampaignFile f = ident::LoadCampaignFile(tmp / "c/campaign.yaml");
+  const data::CampaignFile f = data::LoadCampaignFile(tmp / "c/campaign.yaml");
   EXPECT_EQ(f.cfd.motion_ramp_periods, 1);
   const CampaignRunSummary s = RunCfdCampaign(f, Quiet());
   ASSERT_TRUE(s.complete);
-  const ident::CaptiveCampaign c = ident::ReadCampaignH5(s.output);
+  const data::CaptiveCampaign c = data::ReadCampaignH5(s.output);
   ASSERT_EQ(c.runs.size(), 1u);
-  const ident::MotionParameters& m = c.runs[0].motion;
-  EXPECT_EQ(m.kind, ident::MotionKind::kPureSway);
+  const data::MotionParameters& m = c.runs[0].motion;
+  EXPECT_EQ(m.kind, data::MotionKind::kPureSway);
   EXPECT_NEAR(m.t_ramp, 2 * m.Period(), 1e-12);
   EXPECT_EQ(c.runs[0].time.size(), 3u * 40u);
   const data::H5Reader r(tmp / "c/runs" / c.runs[0].name / "result.h5");
@@ -236,7 +236,7 @@ TEST(CfdCampaign, MotionRampsOverFewerPeriodsThanTheAnalysisDiscards) {
 
 TEST(CfdCampaign, ARunInAnotherProcessIsNotComputedTwice) {
   ScopedTempDir tmp;
-  const ident::CampaignFile f = ident::LoadCampaignFile(WriteCampaign(tmp / "c"));
+  const data::CampaignFile f = data::LoadCampaignFile(WriteCampaign(tmp / "c"));
   fs::create_directories(tmp / "c/runs/drift_+0.0deg");
   const std::string lock = (tmp / "c/runs/drift_+0.0deg/lock").string();
   const int fd = ::open(lock.c_str(), O_CREAT | O_RDWR, 0644);
@@ -258,7 +258,7 @@ TEST(CfdCampaign, BadCfdSectionIsOneClearError) {
     std::string text = ReadText(p);
     text.replace(text.find("hull_patches: [obstacle]"), 24, "hull_patches: [hull]");
     std::ofstream(p) << text;
-    const ident::CampaignFile f = ident::LoadCampaignFile(p);
+    const data::CampaignFile f = data::LoadCampaignFile(p);
     try {
       RunCfdCampaign(f, Quiet());
       FAIL() << "accepted an unknown hull patch";
@@ -273,7 +273,7 @@ TEST(CfdCampaign, BadCfdSectionIsOneClearError) {
         << "campaign: {name: a, ship: s.yaml, solver: cfd, speed: 1}\n"
            "cfd: {case: c.yaml, steps_per_period: 4}\ntests: {pure_sway_v_prime: [0.1]}\n";
     try {
-      ident::LoadCampaignFile(p);
+      data::LoadCampaignFile(p);
       FAIL();
     } catch (const ConfigError& e) {
       EXPECT_THAT(
@@ -285,7 +285,7 @@ TEST(CfdCampaign, BadCfdSectionIsOneClearError) {
     const fs::path p = tmp / "c.yaml";
     std::ofstream(p) << "campaign: {name: a, ship: s.yaml, solver: mmg}\ncfd: {case: c.yaml}\n"
                         "tests: {pure_sway_v_prime: [0.1]}\n";
-    EXPECT_THROW(ident::LoadCampaignFile(p), ConfigError);
+    EXPECT_THROW(data::LoadCampaignFile(p), ConfigError);
   }
 }
 
@@ -302,12 +302,12 @@ TEST(CfdCampaign, AJobAndAKelvinRunOfTheSameCaseAgree) {
   std::string tests = ReadText(WriteCampaign(tmp / "c"));
   tests.replace(tests.find("static_drift_deg: [0, 5, -5]"), 28, "static_drift_deg: [0]");
   std::ofstream(tmp / "c" / "campaign.yaml") << tests;
-  const ident::CampaignFile f = ident::LoadCampaignFile(tmp / "c" / "campaign.yaml");
+  const data::CampaignFile f = data::LoadCampaignFile(tmp / "c" / "campaign.yaml");
   ASSERT_TRUE(RunCfdCampaign(f, Quiet()).complete);
-  const ident::CaptiveCampaign campaign = ident::ReadCampaignH5(f.cfd.directory / (f.name + ".h5"));
-  const auto drift = std::find_if(campaign.runs.begin(), campaign.runs.end(), [](const ident::CaptiveRun& r) {
-    return r.motion.kind == ident::MotionKind::kStaticDrift;
-  });
+  const data::CaptiveCampaign campaign = data::ReadCampaignH5(f.cfd.directory / (f.name + ".h5"));
+  const auto drift = std::find_if(
+      campaign.runs.begin(), campaign.runs.end(),
+      [](const data::CaptiveRun& r) { return r.motion.kind == data::MotionKind::kStaticDrift; });
   ASSERT_NE(drift, campaign.runs.end());
 
   std::string text = ReadText(DataDir() / "block2d_case.yaml");

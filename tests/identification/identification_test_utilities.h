@@ -7,10 +7,12 @@
 
 namespace kelvin::ident::fixtures {
 
-inline CaptiveCampaign StandardCampaign(const sim::ShipParameters& ship, bool combined, bool inertia = true) {
-  VirtualCaptiveOptions o;
+inline data::CaptiveCampaign StandardCampaign(const sim::ShipParameters& ship, bool combined,
+                                              bool inertia = true) {
+  data::VirtualCaptiveOptions o;
   o.include_rigid_body_inertia = inertia;
-  return GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, combined), o);
+  return GenerateCampaign(sim::MmgModel<double>(ship),
+                          data::StandardDesign(ship.approach_speed, combined), o);
 }
 
 }  // namespace kelvin::ident::fixtures

@@ -9,10 +9,10 @@
 #include <fstream>
 #include <limits>
 
-#include "simulator/mmg/derivative_set.h"
+#include "data/schema/captive_io.h"
 #include "data/schema/h5_file.h"
-#include "identification/captive_io.h"
 #include "identification/virtual_captive.h"
+#include "simulator/mmg/derivative_set.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::ident {
@@ -21,15 +21,15 @@ namespace {
 std::string Kelvin() { return (testing::ToolsDir() / "kelvin").string(); }
 std::filesystem::path ShipFile() { return testing::SourceDir() / "data/ships/kvlcc2.yaml"; }
 
-CaptiveCampaign Campaign() {
+data::CaptiveCampaign Campaign() {
   const sim::ShipParameters ship = sim::LoadShip(ShipFile());
-  return GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, true),
-                          {});
+  return GenerateCampaign(sim::MmgModel<double>(ship),
+                          data::StandardDesign(ship.approach_speed, true), {});
 }
 
 TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
   testing::ScopedTempDir dir;
-  WriteCampaignH5(Campaign(), dir / "campaign.h5");
+  data::WriteCampaignH5(Campaign(), dir / "campaign.h5");
   const auto r = testing::RunCommand(Kelvin() + " identify " + (dir / "campaign.h5").string() +
                                      " -o " + (dir / "kvlcc2_derivatives.yaml").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -78,8 +78,8 @@ TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
 TEST(IdentifyCliTest, CsvRunsWithShipFile) {
   testing::ScopedTempDir dir;
   std::string files;
-  for (const CaptiveRun& run : Campaign().runs) {
-    WriteRunCsv(run, dir / (run.name + ".csv"));
+  for (const data::CaptiveRun& run : Campaign().runs) {
+    data::WriteRunCsv(run, dir / (run.name + ".csv"));
     files.append(" ").append((dir / (run.name + ".csv")).string());
   }
   const auto r = testing::RunCommand(Kelvin() + " identify" + files + " --ship " +
@@ -96,7 +96,7 @@ TEST(IdentifyCliTest, CsvRunsWithShipFile) {
 
 TEST(IdentifyCliTest, BadArgumentsExitTwo) {
   testing::ScopedTempDir dir;
-  WriteCampaignH5(Campaign(), dir / "c.h5");
+  data::WriteCampaignH5(Campaign(), dir / "c.h5");
   const std::string base =
       Kelvin() + " identify " + (dir / "c.h5").string() + " -o " + (dir / "d.yaml").string();
   auto r = testing::RunCommand(base + " --loss square");
@@ -136,9 +136,9 @@ TEST(IdentifyCliTest, BadFilesExitOneAndWriteNothing) {
                                (dir / "d.yaml").string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("none.h5: no such file"), std::string::npos) << r.output;
-  CaptiveCampaign c = Campaign();
+  data::CaptiveCampaign c = Campaign();
   c.runs[7].force[1][300] = std::numeric_limits<double>::quiet_NaN();
-  WriteCampaignH5(c, dir / "nan.h5");
+  data::WriteCampaignH5(c, dir / "nan.h5");
   r = testing::RunCommand(Kelvin() + " identify " + (dir / "nan.h5").string() + " -o " +
                           (dir / "d.yaml").string());
   EXPECT_EQ(r.exit_code, 1);

@@ -34,13 +34,13 @@ using fixtures::StandardCampaign;
 // and the count is bounded below.
 TEST(JointFitNoiseTest, NoiseStandardErrorsMatchEmpiricalSpreadOverTwentySeeds) {
   const sim::ShipParameters ship = Kvlcc2();
-  const CaptiveCampaign clean = StandardCampaign(ship, true);
+  const data::CaptiveCampaign clean = StandardCampaign(ship, true);
   constexpr int kSeeds = 20;
   std::array<std::vector<double>, kCoefficientCount> estimate, std_error;
   int outside3 = 0, outside4 = 0;
   double first_campaign_worst_z = 0;
   for (int seed = 1; seed <= kSeeds; ++seed) {
-    CaptiveCampaign c = clean;
+    data::CaptiveCampaign c = clean;
     AddForceNoise(c, 0.05, static_cast<std::uint64_t>(seed));
     JointFitOptions o;
     o.fix_unidentifiable = false;

@@ -9,11 +9,11 @@
 #include <cstdio>
 #include <random>
 
+#include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
-#include "identification/captive_io.h"
 #include "identification/virtual_captive.h"
-#include "tests/test_utilities/test_utilities.h"
 #include "tests/identification/identification_test_utilities.h"
+#include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::ident {
 namespace {
@@ -34,8 +34,8 @@ using fixtures::StandardCampaign;
 TEST(JointFitTest, RoundTripWithoutNoiseRecoversEveryCoefficient) {
   const sim::ShipParameters ship = Kvlcc2();
   testing::ScopedTempDir dir;
-  WriteCampaignH5(StandardCampaign(ship, true), dir / "campaign.h5");
-  const CaptiveCampaign campaign = ReadCampaignH5(dir / "campaign.h5");
+  data::WriteCampaignH5(StandardCampaign(ship, true), dir / "campaign.h5");
+  const data::CaptiveCampaign campaign = data::ReadCampaignH5(dir / "campaign.h5");
   const JointFitResult fit = FitCampaign(campaign, {}, "campaign.h5");
   EXPECT_TRUE(fit.converged) << fit.solver_report;
   for (int i = 0; i < kCoefficientCount; ++i) {
@@ -66,10 +66,10 @@ TEST(JointFitTest, RigidBodyInertiaIsRemovedWhenIncluded) {
 // dropped (held at 0) instead of being returned with confident nonsense.
 TEST(JointFitTest, CrossTermsFlaggedWithoutCombinedTests) {
   const sim::ShipParameters ship = Kvlcc2();
-  const CaptiveCampaign clean = StandardCampaign(ship, false);
+  const data::CaptiveCampaign clean = StandardCampaign(ship, false);
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    CaptiveCampaign c = clean;
+    data::CaptiveCampaign c = clean;
     AddForceNoise(c, 0.05, seed);
     const JointFitResult fit = FitCampaign(c, {}, "no combined");
     for (int i : {kXvr, kYvvr, kYvrr, kNvvr, kNvrr}) {
@@ -119,9 +119,9 @@ TEST(JointFitTest, CrossTermsWithoutNoiseAreFlaggedOrExact) {
 // alone lets them through because the whitened noise level is tiny.
 TEST(JointFitTest, UnexcitedCrossTermsAreFlaggedWithModelError) {
   const sim::ShipParameters ship = Kvlcc2();
-  CaptiveCampaign c = StandardCampaign(ship, false, false);
-  for (CaptiveRun& run : c.runs) {
-    if (!IsHarmonic(run.motion.kind)) continue;
+  data::CaptiveCampaign c = StandardCampaign(ship, false, false);
+  for (data::CaptiveRun& run : c.runs) {
+    if (!data::IsHarmonic(run.motion.kind)) continue;
     for (auto& f : run.force) {
       double rms = 0;
       for (double x : f) rms += x * x / static_cast<double>(f.size());
@@ -189,7 +189,7 @@ TEST(JointFitTest, UnexcitedCrossTermsAreFlaggedWithModelError) {
 // the cross terms (steady v' and r' together).
 TEST(JointFitTest, CircularMotionRunsIdentifyCrossTerms) {
   const sim::ShipParameters ship = Kvlcc2();
-  CampaignDesign d = StandardDesign(ship.approach_speed, false);
+  data::CampaignDesign d = data::StandardDesign(ship.approach_speed, false);
   for (double beta : {-0.2, -0.1, 0.0, 0.1, 0.2}) {
     for (double r : {0.2, 0.4, 0.6}) d.circular.push_back({beta, r});
   }
@@ -214,7 +214,7 @@ TEST(JointFitTest, CorrelationWarningForYrAndAddedMassX) {
 
 TEST(JointFitTest, PriorMakesATermIdentifiable) {
   const sim::ShipParameters ship = Kvlcc2();
-  CaptiveCampaign c = StandardCampaign(ship, false);
+  data::CaptiveCampaign c = StandardCampaign(ship, false);
   AddForceNoise(c, 0.05, 3);
   JointFitOptions o;
   o.priors["Y_vvr"] = {0.379, 0.01};
@@ -267,11 +267,11 @@ TEST(JointFitTest, CoefficientOnItsBoundIsHeldThere) {
 
 TEST(JointFitTest, RobustLossResistsSpikes) {
   const sim::ShipParameters ship = Kvlcc2();
-  CaptiveCampaign c = StandardCampaign(ship, true);
+  data::CaptiveCampaign c = StandardCampaign(ship, true);
   AddForceNoise(c, 0.02, 11);
   // 1% of the samples carry a spike of 20 channel RMS (a loose connector).
   std::mt19937_64 rng(5);
-  for (CaptiveRun& run : c.runs) {
+  for (data::CaptiveRun& run : c.runs) {
     for (auto& f : run.force) {
       double rms = 0;
       for (double x : f) rms += x * x / f.size();
@@ -299,7 +299,7 @@ TEST(JointFitTest, RobustLossResistsSpikes) {
 }
 
 TEST(JointFitTest, BadOptionsNameTheOption) {
-  const CaptiveCampaign c = StandardCampaign(Kvlcc2(), true);
+  const data::CaptiveCampaign c = StandardCampaign(Kvlcc2(), true);
   JointFitOptions o;
   o.priors["Y_vv"] = {0.0, 1.0};
   try {

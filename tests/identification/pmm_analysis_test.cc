@@ -18,8 +18,8 @@ namespace {
 
 using sim::testing::Kvlcc2;
 
-CaptiveShip UnitShip() {
-  CaptiveShip s;
+data::CaptiveShip UnitShip() {
+  data::CaptiveShip s;
   s.name = "unit";
   s.Lpp = 2.0;
   s.d = 0.5;
@@ -33,10 +33,10 @@ CaptiveShip UnitShip() {
 // garbage during the ramp-up: the analysis must return the first harmonic
 // exactly, because it uses whole periods after t_ramp only.
 TEST(PmmAnalysisTest, FirstHarmonicOverWholePeriodsAfterRamp) {
-  const CaptiveShip ship = UnitShip();
-  CaptiveRun run;
+  const data::CaptiveShip ship = UnitShip();
+  data::CaptiveRun run;
   run.name = "synthetic";
-  run.motion.kind = MotionKind::kPureSway;
+  run.motion.kind = data::MotionKind::kPureSway;
   run.motion.U = 1.0;
   run.motion.y_a = 0.1;
   run.motion.omega = 0.8;
@@ -75,9 +75,9 @@ TEST(PmmAnalysisTest, FirstHarmonicOverWholePeriodsAfterRamp) {
 TEST(PmmAnalysisTest, RigidBodyInertiaIsRemoved) {
   const sim::ShipParameters ship = Kvlcc2();
   const sim::MmgModel<double> model(ship);
-  VirtualCaptiveOptions with, without;
+  data::VirtualCaptiveOptions with, without;
   without.include_rigid_body_inertia = false;
-  const CampaignDesign d = StandardDesign(ship.approach_speed, true);
+  const data::CampaignDesign d = data::StandardDesign(ship.approach_speed, true);
   const PmmAnalysis a = AnalyseCampaign(GenerateCampaign(model, d, with), "with");
   const PmmAnalysis b = AnalyseCampaign(GenerateCampaign(model, d, without), "without");
   ASSERT_EQ(a.runs.size(), b.runs.size());
@@ -105,9 +105,10 @@ const ClassicalEstimate* Find(const PmmAnalysis& a, const std::string& name,
 // regression over six angles is exact to rounding.
 TEST(PmmAnalysisTest, StaticDriftRegressionIsExact) {
   const sim::ShipParameters ship = Kvlcc2();
-  const PmmAnalysis a = AnalyseCampaign(
-      GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, false), {}),
-      "kvlcc2");
+  const PmmAnalysis a =
+      AnalyseCampaign(GenerateCampaign(sim::MmgModel<double>(ship),
+                                       data::StandardDesign(ship.approach_speed, false), {}),
+                      "kvlcc2");
   const std::string reg = "static drift regression";
   const sim::HullCoefficients<double>& h = ship.hull;
   for (auto [name, truth] : std::vector<std::pair<std::string, double>>{{"R0_prime", h.R0},
@@ -130,9 +131,10 @@ TEST(PmmAnalysisTest, StaticDriftRegressionIsExact) {
 // O(amplitude^4) (< 0.2^4 / 0.2^2 of the per-run bias).
 TEST(PmmAnalysisTest, ClassicalDerivativesMatchTheMmgModel) {
   const sim::ShipParameters ship = Kvlcc2();
-  const PmmAnalysis a = AnalyseCampaign(
-      GenerateCampaign(sim::MmgModel<double>(ship), StandardDesign(ship.approach_speed, false), {}),
-      "kvlcc2");
+  const PmmAnalysis a =
+      AnalyseCampaign(GenerateCampaign(sim::MmgModel<double>(ship),
+                                       data::StandardDesign(ship.approach_speed, false), {}),
+                      "kvlcc2");
   const std::string zero = "zero-amplitude extrapolation";
   for (const std::string name :
        {"Y_v", "N_v", "Y_vdot", "N_vdot", "Y_r", "N_r", "Y_rdot", "N_rdot"}) {

@@ -24,8 +24,8 @@ sim::TurningMetrics Turn(const sim::ShipParameters& ship) {
 
 void CompareTurn(double noise, std::uint64_t seed) {
   const sim::ShipParameters truth = sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
-  CaptiveCampaign c = GenerateCampaign(sim::MmgModel<double>(truth),
-                                       StandardDesign(truth.approach_speed, true), {});
+  data::CaptiveCampaign c = GenerateCampaign(sim::MmgModel<double>(truth),
+                                             data::StandardDesign(truth.approach_speed, true), {});
   if (noise > 0) AddForceNoise(c, noise, seed);
   const JointFitResult fit = FitCampaign(c, {}, "virtual");
   ASSERT_TRUE(fit.converged);

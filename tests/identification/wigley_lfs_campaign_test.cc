@@ -44,7 +44,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -53,7 +52,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "identification/captive_io.h"
+#include "data/schema/captive_io.h"
 #include "identification/joint_fit.h"
 #include "identification/pmm_analysis.h"
 #include "tests/test_utilities/test_utilities.h"
@@ -122,10 +121,11 @@ TEST_P(WigleyLfsCampaign, LinearDerivativesHaveTheExpectedSignsAndMagnitudes) {
                                                " --no-progress");
   ASSERT_EQ(run.exit_code, 0) << run.output;
 
-  const CaptiveCampaign c = ReadCampaignH5(dir / "runs" / (std::string(p.name) + ".h5"));
+  const data::CaptiveCampaign c =
+      data::ReadCampaignH5(dir / "runs" / (std::string(p.name) + ".h5"));
   int harmonic_runs = 0;
-  for (const CaptiveRun& r : c.runs) {
-    if (!IsHarmonic(r.motion.kind)) continue;
+  for (const data::CaptiveRun& r : c.runs) {
+    if (!data::IsHarmonic(r.motion.kind)) continue;
     ++harmonic_runs;
     const double period = r.motion.Period();
     const std::size_t n = r.time.size();
@@ -156,9 +156,10 @@ TEST_P(WigleyLfsCampaign, LinearDerivativesHaveTheExpectedSignsAndMagnitudes) {
   }
   for (const RunFitStatistics& r : fit.runs) {
     const auto it = std::find_if(c.runs.begin(), c.runs.end(),
-                                 [&](const CaptiveRun& x) { return x.name == r.run; });
+                                 [&](const data::CaptiveRun& x) { return x.name == r.run; });
     ASSERT_NE(it, c.runs.end()) << r.run;
-    const bool straight = it->motion.kind == MotionKind::kStaticDrift && it->motion.beta == 0.0;
+    const bool straight =
+        it->motion.kind == data::MotionKind::kStaticDrift && it->motion.beta == 0.0;
     std::printf("%-16s RMS residual / RMS measured:", r.run.c_str());
     for (int ch = 0; ch < 3; ++ch) {
       const double reference = straight && ch > 0 ? largest[ch] : r.rms_measured[ch];

@@ -12,8 +12,8 @@
 #include <cmath>
 #include <fstream>
 
+#include "data/schema/campaign_file.h"
 #include "data/schema/h5_file.h"
-#include "identification/campaign_file.h"
 #include "simulator/mmg/derivative_set.h"
 #include "simulator/mmg/ship_parameters.h"
 #include "tests/test_utilities/test_utilities.h"
@@ -31,15 +31,16 @@ std::string Kelvin() { return (testing::ToolsDir() / "kelvin").string(); }
 // the second period, see wigley_lfs_campaign.yaml) and has the runs the linear
 // derivatives need; the simulation ship file describes the same hull.
 TEST(WigleyQuickChain, CampaignAndShipFilesDescribeTheSameHull) {
-  const CampaignFile f = LoadCampaignFile(Data() / "cases/captive_cfd/wigley_quick_campaign.yaml");
-  EXPECT_EQ(f.solver, CampaignFile::Solver::kCfd);
+  const data::CampaignFile f =
+      data::LoadCampaignFile(Data() / "cases/captive_cfd/wigley_quick_campaign.yaml");
+  EXPECT_EQ(f.solver, data::CampaignFile::Solver::kCfd);
   EXPECT_EQ(f.cfd.case_file.filename(), "wigley_quick_case.yaml");
   EXPECT_TRUE(fs::exists(f.cfd.case_file));
   EXPECT_GE(f.sampling.ramp_periods, 2);
   EXPECT_GE(f.design.drift_angles.size(), 2u);
   EXPECT_GE(f.design.sway_amplitudes.size(), 1u);
   EXPECT_GE(f.design.yaw_amplitudes.size(), 1u);
-  const CaptiveShip campaign_ship = LoadCaptiveShip(f.ship_file);
+  const data::CaptiveShip campaign_ship = data::LoadCaptiveShip(f.ship_file);
   const sim::ShipParameters ship = sim::LoadShip(Data() / "ships/wigley.yaml");
   EXPECT_DOUBLE_EQ(ship.principal.Lpp, campaign_ship.Lpp);
   EXPECT_DOUBLE_EQ(ship.principal.d, campaign_ship.d);

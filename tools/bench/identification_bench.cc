@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "identification/captive_io.h"
+#include "data/schema/captive_io.h"
 #include "identification/joint_fit.h"
 #include "identification/virtual_captive.h"
 #include "tools/bench/markdown_section.h"
@@ -72,20 +72,20 @@ int main(int argc, char** argv) {
   // 10 runs, each with 1000 analysed samples: 2 static drift (20 s at 50 Hz
   // after the ramp), 2 pure sway, 2 pure yaw, 4 yaw with drift (5 periods of
   // 200 samples after one ramp-up period).
-  CampaignDesign d;
+  kelvin::data::CampaignDesign d;
   d.U = ship.approach_speed;
   d.drift_angles = {10 * kDeg, 20 * kDeg};
   d.sway_amplitudes = {0.1, 0.2};
   d.yaw_amplitudes = {0.3, 0.6};
   d.yaw_drift_angles = {4 * kDeg, 8 * kDeg, 12 * kDeg, 16 * kDeg};
-  VirtualCaptiveOptions o;
+  kelvin::data::VirtualCaptiveOptions o;
   o.periods = 5;
   o.samples_per_period = 200;
   o.steady_duration = 20.0;
   o.steady_rate = 50.0;
-  CaptiveCampaign campaign = GenerateCampaign(model, d, o);
+  kelvin::data::CaptiveCampaign campaign = GenerateCampaign(model, d, o);
   AddForceNoise(campaign, 0.05, 1);
-  if (!campaign_out.empty()) WriteCampaignH5(campaign, campaign_out);
+  if (!campaign_out.empty()) kelvin::data::WriteCampaignH5(campaign, campaign_out);
 
   constexpr int kRepeats = 5;
   std::vector<double> fit_times, fit_cpu, peer_times;

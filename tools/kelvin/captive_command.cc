@@ -11,9 +11,10 @@
 #include <string>
 
 #include "cfd/campaign/cfd_campaign.h"
+#include "data/schema/campaign_file.h"
+#include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
-#include "identification/campaign_file.h"
-#include "identification/captive_io.h"
+#include "identification/virtual_captive.h"
 #include "tools/kelvin/commands.h"
 
 namespace kelvin::cli {
@@ -35,7 +36,7 @@ std::filesystem::path SelfExecutable() {
   return ec ? std::filesystem::path() : self;
 }
 
-void RunCfd(const ident::CampaignFile& file, const CaptiveArgs& a) {
+void RunCfd(const data::CampaignFile& file, const CaptiveArgs& a) {
   cfd::CampaignRunOptions o;
   o.jobs = a.jobs;
   o.stop_after_steps = a.stop_after_steps;
@@ -59,21 +60,21 @@ void RunCfd(const ident::CampaignFile& file, const CaptiveArgs& a) {
 }
 
 void RunCaptive(const CaptiveArgs& a) {
-  const ident::CampaignFile file = ident::LoadCampaignFile(a.campaign_file);
-  if (file.solver == ident::CampaignFile::Solver::kCfd) {
+  const data::CampaignFile file = data::LoadCampaignFile(a.campaign_file);
+  if (file.solver == data::CampaignFile::Solver::kCfd) {
     RunCfd(file, a);
     return;
   }
   if (a.jobs > 0 || a.stop_after_steps > 0 || !a.run.empty()) {
     throw ArgumentError("--jobs, --stop-after-steps and --run are for campaigns with solver: cfd");
   }
-  const ident::CaptiveCampaign campaign = ident::RunCampaign(file);
+  const data::CaptiveCampaign campaign = ident::RunCampaign(file);
   const std::string out = a.output.empty() ? "results/" + file.name + ".h5" : a.output;
-  ident::WriteCampaignH5(campaign, out);
+  data::WriteCampaignH5(campaign, out);
   fmt::print("campaign '{}' ({} runs, solver mmg: virtual captive tests of {})\n", file.name,
              campaign.runs.size(), file.ship_file.string());
   for (const auto& run : campaign.runs) {
-    fmt::print("  {:<24} {:<16} {} samples\n", run.name, ident::MotionKindName(run.motion.kind),
+    fmt::print("  {:<24} {:<16} {} samples\n", run.name, data::MotionKindName(run.motion.kind),
                run.time.size());
   }
   fmt::print("  written: {}\n", out);

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
-#include "identification/captive_io.h"
 #include "identification/derivative_set_io.h"
 #include "identification/joint_fit.h"
 #include "identification/pmm_analysis.h"
@@ -105,7 +105,7 @@ void RunIdentify(const IdentifyArgs& a) {
   // Option errors are argument errors: check before reading any data.
   options.Validate();
 
-  ident::CaptiveCampaign campaign;
+  data::CaptiveCampaign campaign;
   std::string source;
   bool any_csv = false, any_h5 = false;
   for (const std::string& in : a.inputs) {
@@ -123,15 +123,15 @@ void RunIdentify(const IdentifyArgs& a) {
   if (any_h5) {
     if (a.inputs.size() != 1) throw ArgumentError("inputs: give one campaign .h5 file");
     source = a.inputs.front();
-    campaign = ident::ReadCampaignH5(source);
+    campaign = data::ReadCampaignH5(source);
   } else {
     if (a.ship_file.empty())
       throw ArgumentError("--ship is required with .csv runs (the ship data of the campaign)");
     campaign.ship = ident::CaptiveShipFrom(sim::LoadShip(a.ship_file));
     campaign.description = "CSV runs";
-    for (const std::string& in : a.inputs) campaign.runs.push_back(ident::ReadRunCsv(in));
+    for (const std::string& in : a.inputs) campaign.runs.push_back(data::ReadRunCsv(in));
     source = fmt::format("{}", fmt::join(a.inputs, ", "));
-    ident::ValidateCampaign(campaign, source);
+    data::ValidateCampaign(campaign, source);
   }
 
   const ident::PmmAnalysis pmm = ident::AnalyseCampaign(campaign, source);

@@ -1,7 +1,6 @@
-// Kinematics of the prescribed captive motions, the rigid-body inertia, and
-// the captive force model against the simulator's motion equations. Ship:
-// KVLCC2 L7 of Yasukawa & Yoshimura (2015), J. Mar. Sci. Technol. 20:37-52.
-#include "identification/captive_run.h"
+// Kinematics of the prescribed captive motions and the checks of a
+// campaign's ship data and runs.
+#include "data/schema/captive_run.h"
 
 #include <gtest/gtest.h>
 
@@ -9,15 +8,12 @@
 #include <numbers>
 
 #include "data/schema/errors.h"
-#include "identification/captive_force_model.h"
-#include "identification/virtual_captive.h"
-#include "tests/test_utilities/test_utilities.h"
-#include "tests/simulator/simulator_test_utilities.h"
+#include "tests/data/schema/captive_test_fixtures.h"
 
-namespace kelvin::ident {
+namespace kelvin::data {
 namespace {
 
-using sim::testing::Kvlcc2;
+using fixtures::Kvlcc2Ship;
 
 MotionParameters Motion(MotionKind kind) {
   MotionParameters m;
@@ -73,67 +69,9 @@ TEST(CaptiveRunTest, AccelerationsAreDerivativesOfVelocities) {
   }
 }
 
-// A ship moving freely under its hull forces alone accelerates as
-// MmgModel::Accelerations says; then the rigid-body inertia force equals the
-// captive hydrodynamic force (hull + added-mass reactions). This ties the
-// captive force model and M_RB a to the simulator's motion equations.
-TEST(CaptiveRunTest, CaptiveForceModelMatchesMotionEquations) {
-  const sim::ShipParameters ship = Kvlcc2();
-  const sim::MmgModel<double> model(ship);
-  const CaptiveShip cs = CaptiveShipFrom(ship);
-  for (auto [u, v, r] :
-       std::vector<std::array<double, 3>>{{1.1, -0.2, 0.05}, {0.9, 0.1, -0.08}, {1.2, 0.0, 0.0}}) {
-    const sim::PlanarForce<double> hull = model.HullForces(u, v, r);
-    const std::array<double, 3> acc = model.Accelerations(u, v, r, hull);
-    const BodyKinematics k{u, v, r, acc[0], acc[1], acc[2]};
-    const std::array<double, 3> f = CaptiveHydrodynamicForce(model, k);
-    const std::array<double, 3> rb = RigidBodyInertia(cs, k);
-    for (int c = 0; c < 3; ++c)
-      EXPECT_NEAR(f[c], rb[c], 1e-9 * (1 + std::abs(rb[c]))) << "channel " << c;
-  }
-}
-
-TEST(CaptiveRunTest, CircularMotionRunIsSteadyAndAnalysed) {
-  const sim::ShipParameters ship = Kvlcc2();
-  MotionParameters m = Motion(MotionKind::kCircularMotion);
-  const CaptiveRun run = GenerateRun(sim::MmgModel<double>(ship), "arm", m, {});
-  const std::array<double, 3> f0 = {run.force[0].back(), run.force[1].back(), run.force[2].back()};
-  for (int c = 0; c < 3; ++c)
-    EXPECT_NEAR(run.force[c][run.force[c].size() / 2], f0[c], 1e-9 * std::abs(f0[c]));
-  EXPECT_NO_THROW(SelectWindow(run, "arm"));
-}
-
-TEST(CaptiveRunTest, BadGeneratorOptionsNameTheOption) {
-  VirtualCaptiveOptions o;
-  o.samples_per_period = 4;
-  try {
-    o.Validate();
-    FAIL();
-  } catch (const ArgumentError& e) {
-    EXPECT_NE(std::string(e.what()).find("'samples_per_period' = 4: expected at least 8"),
-              std::string::npos);
-  }
-  CampaignDesign d = StandardDesign(1.0, true);
-  d.sway_amplitudes = {0.1, -0.2};
-  try {
-    d.Validate();
-    FAIL();
-  } catch (const ArgumentError& e) {
-    EXPECT_NE(std::string(e.what()).find("'sway_amplitudes' = -0.2"), std::string::npos)
-        << e.what();
-  }
-  d = StandardDesign(0.0, true);
-  try {
-    d.Validate();
-    FAIL();
-  } catch (const ArgumentError& e) {
-    EXPECT_NE(std::string(e.what()).find("'U' = 0"), std::string::npos) << e.what();
-  }
-}
-
 TEST(CaptiveRunTest, BadShipDataNamesTheAttribute) {
   CaptiveCampaign c;
-  c.ship = CaptiveShipFrom(Kvlcc2());
+  c.ship = Kvlcc2Ship();
   c.ship.I_zG = -1;
   try {
     ValidateCampaign(c, "c.h5");
@@ -142,7 +80,7 @@ TEST(CaptiveRunTest, BadShipDataNamesTheAttribute) {
     EXPECT_NE(std::string(e.what()).find("c.h5: ship attribute 'I_zG' = -1"), std::string::npos)
         << e.what();
   }
-  c.ship = CaptiveShipFrom(Kvlcc2());
+  c.ship = Kvlcc2Ship();
   try {
     ValidateCampaign(c, "c.h5");
     FAIL();
@@ -153,11 +91,9 @@ TEST(CaptiveRunTest, BadShipDataNamesTheAttribute) {
 }
 
 TEST(CaptiveRunTest, DuplicateRunNamesAreRejected) {
-  const sim::ShipParameters ship = Kvlcc2();
   CaptiveCampaign c;
-  c.ship = CaptiveShipFrom(ship);
-  const CaptiveRun run =
-      GenerateRun(sim::MmgModel<double>(ship), "sway", Motion(MotionKind::kPureSway), {});
+  c.ship = Kvlcc2Ship();
+  const CaptiveRun run = fixtures::SampledRun(c.ship, "sway", Motion(MotionKind::kPureSway));
   c.runs = {run, run};
   try {
     ValidateCampaign(c, "runs.csv");
@@ -170,4 +106,4 @@ TEST(CaptiveRunTest, DuplicateRunNamesAreRejected) {
 }
 
 }  // namespace
-}  // namespace kelvin::ident
+}  // namespace kelvin::data

@@ -1,6 +1,6 @@
 // Captive campaign files: HDF5 and CSV round trips, and one clear error per
 // bad input (acceptance 5 of issue 9), each naming the run and the channel.
-#include "identification/captive_io.h"
+#include "data/schema/captive_io.h"
 
 #include <gtest/gtest.h>
 
@@ -11,29 +11,13 @@
 
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
-#include "identification/virtual_captive.h"
+#include "tests/data/schema/captive_test_fixtures.h"
 #include "tests/test_utilities/test_utilities.h"
-#include "tests/simulator/simulator_test_utilities.h"
 
-namespace kelvin::ident {
+namespace kelvin::data {
 namespace {
 
-// KVLCC2 L7 model of Yasukawa & Yoshimura (2015) (data/ships/kvlcc2.yaml).
-using sim::testing::Kvlcc2;
-
-CaptiveCampaign SmallCampaign() {
-  const sim::ShipParameters ship = Kvlcc2();
-  CampaignDesign d = StandardDesign(ship.approach_speed, true);
-  d.drift_angles = {0.1};
-  d.sway_amplitudes = {0.1};
-  d.yaw_amplitudes = {0.3};
-  d.yaw_drift_angles = {0.1};
-  VirtualCaptiveOptions o;
-  o.periods = 2;
-  o.samples_per_period = 50;
-  o.steady_duration = 3.0;
-  return GenerateCampaign(sim::MmgModel<double>(ship), d, o);
-}
+using fixtures::SmallCampaign;
 
 void ExpectSameCampaign(const CaptiveCampaign& a, const CaptiveCampaign& b) {
   EXPECT_EQ(a.ship.name, b.ship.name);
@@ -87,7 +71,7 @@ struct H5Edit {
   std::string units = "kN";
 };
 void WriteEdited(const CaptiveCampaign& c, const std::filesystem::path& path, const H5Edit& edit) {
-  data::H5Writer w(path);
+  H5Writer w(path);
   w.SetAttribute("/", "schema", kCaptiveSchema);
   w.SetAttribute("/ship", "name", c.ship.name);
   for (auto [k, v] : std::vector<std::pair<std::string, double>>{{"Lpp", c.ship.Lpp},
@@ -234,7 +218,7 @@ TEST(CaptiveIoTest, BadMotionAttributesNameRunAndAttribute) {
 TEST(CaptiveIoTest, NotACampaignFile) {
   testing::ScopedTempDir dir;
   {
-    data::H5Writer w(dir / "other.h5");
+    H5Writer w(dir / "other.h5");
     w.SetAttribute("/", "schema", "kelvin.maneuver/1");
     w.Commit();
   }
@@ -308,4 +292,4 @@ TEST(CaptiveIoTest, CsvBadInputsNameRunAndChannel) {
 }
 
 }  // namespace
-}  // namespace kelvin::ident
+}  // namespace kelvin::data

@@ -1,4 +1,4 @@
-#include "identification/campaign_file.h"
+#include "data/schema/campaign_file.h"
 
 #include <fmt/format.h>
 
@@ -7,13 +7,13 @@
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 
-namespace kelvin::ident {
+namespace kelvin::data {
 
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-std::vector<double> Degrees(const data::ConfigNode& node, const char* key) {
+std::vector<double> Degrees(const ConfigNode& node, const char* key) {
   std::vector<double> out;
   if (auto child = node.Find(key)) {
     for (const auto& item : child->Items()) {
@@ -25,7 +25,7 @@ std::vector<double> Degrees(const data::ConfigNode& node, const char* key) {
   return out;
 }
 
-std::vector<double> PositiveList(const data::ConfigNode& node, const char* key) {
+std::vector<double> PositiveList(const ConfigNode& node, const char* key) {
   std::vector<double> out;
   if (auto child = node.Find(key)) {
     for (const auto& item : child->Items()) {
@@ -40,7 +40,7 @@ std::vector<double> PositiveList(const data::ConfigNode& node, const char* key) 
 }  // namespace
 
 CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
-  const auto root = data::ConfigNode::LoadFile(path);
+  const auto root = ConfigNode::LoadFile(path);
   root.ExpectKeys({"campaign", "tests", "sampling", "cfd"});
   CampaignFile f;
   f.path = path;
@@ -145,7 +145,7 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
 }
 
 CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file) {
-  const auto root = data::ConfigNode::LoadFile(ship_file);
+  const auto root = ConfigNode::LoadFile(ship_file);
   CaptiveShip s;
   s.name = root["ship"].Get<std::string>("name");
   const auto p = root["principal"];
@@ -161,20 +161,4 @@ CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file) {
   return s;
 }
 
-CaptiveCampaign RunCampaign(const CampaignFile& f) {
-  if (f.solver != CampaignFile::Solver::kMmg) {
-    throw ConfigError(f.name + ": RunCampaign runs the mmg solver; cfd campaigns run through cfd/campaign");
-  }
-  const sim::ShipParameters ship = sim::LoadShip(f.ship_file);
-  CampaignDesign design = f.design;
-  design.U = f.speed > 0 ? f.speed : ship.approach_speed;
-  if (!(design.U > 0)) {
-    throw ConfigError(f.name + ": no speed given and the ship file has no conditions.approach_speed");
-  }
-  design.Validate();
-  CaptiveCampaign campaign = GenerateCampaign(sim::MmgModel<double>(ship), design, f.sampling);
-  if (f.noise > 0) AddForceNoise(campaign, f.noise, f.seed);
-  return campaign;
-}
-
-}  // namespace kelvin::ident
+}  // namespace kelvin::data

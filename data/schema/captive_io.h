@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
-#include "identification/captive_run.h"
+#include "data/schema/captive_run.h"
 
-namespace kelvin::ident {
+namespace kelvin::data {
 
 inline constexpr std::string_view kCaptiveSchema = "kelvin.captive/1";
 
@@ -27,4 +27,4 @@ void WriteRunCsv(const CaptiveRun& run, const std::filesystem::path& path);
 // Throws kelvin::DataFileError with the file, line, run and channel.
 CaptiveRun ReadRunCsv(const std::filesystem::path& path);
 
-}  // namespace kelvin::ident
+}  // namespace kelvin::data

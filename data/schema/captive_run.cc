@@ -1,4 +1,4 @@
-#include "identification/captive_run.h"
+#include "data/schema/captive_run.h"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 
 #include "data/schema/errors.h"
 
-namespace kelvin::ident {
+namespace kelvin::data {
 
 namespace {
 
@@ -227,4 +227,4 @@ void ValidateCampaign(const CaptiveCampaign& c, std::string_view source) {
   }
 }
 
-}  // namespace kelvin::ident
+}  // namespace kelvin::data

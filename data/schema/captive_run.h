@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-namespace kelvin::ident {
+namespace kelvin::data {
 
 enum class MotionKind { kStaticDrift, kPureSway, kPureYaw, kYawDrift, kCircularMotion };
 
@@ -116,4 +116,4 @@ struct AnalysisWindow {
 };
 AnalysisWindow SelectWindow(const CaptiveRun& run, std::string_view source);
 
-}  // namespace kelvin::ident
+}  // namespace kelvin::data

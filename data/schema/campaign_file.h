@@ -1,5 +1,7 @@
 // Captive campaign files (YAML): which ship, which solver produces the
-// forces, and the test matrix. `kelvin captive campaign.yaml` runs them.
+// forces, and the test matrix. `kelvin captive campaign.yaml` runs them
+// (solver mmg: identification/virtual_captive.h, RunCampaign; solver cfd:
+// cfd/campaign/cfd_campaign.h).
 //
 //   campaign:
 //     name: kvlcc2_virtual
@@ -48,9 +50,10 @@
 #include <string>
 #include <vector>
 
-#include "identification/virtual_captive.h"
+#include "data/schema/captive_plan.h"
+#include "data/schema/captive_run.h"
 
-namespace kelvin::ident {
+namespace kelvin::data {
 
 struct CampaignFile {
   std::string name;
@@ -89,13 +92,8 @@ struct CampaignFile {
 // unless given); other sections are not read. Throws ConfigError.
 CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file);
 
-
 // Reads and validates a campaign file; every unknown key or bad value is a
 // kelvin::ConfigError naming the file, line, key and what was expected.
 CampaignFile LoadCampaignFile(const std::filesystem::path& path);
 
-// Runs the campaign with the MMG solver and returns the captive runs (the
-// cfd solver runs through cfd/campaign/cfd_campaign.h).
-CaptiveCampaign RunCampaign(const CampaignFile& file);
-
-}  // namespace kelvin::ident
+}  // namespace kelvin::data

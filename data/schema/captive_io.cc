@@ -1,4 +1,4 @@
-#include "identification/captive_io.h"
+#include "data/schema/captive_io.h"
 
 #include <fmt/format.h>
 
@@ -13,7 +13,7 @@
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 
-namespace kelvin::ident {
+namespace kelvin::data {
 
 namespace fs = std::filesystem;
 
@@ -89,7 +89,7 @@ double ParseNumber(const std::string& text, const std::string& where) {
 }  // namespace
 
 void WriteCampaignH5(const CaptiveCampaign& campaign, const fs::path& path) {
-  data::H5Writer w(path);
+  H5Writer w(path);
   w.SetAttribute("/", "schema", kCaptiveSchema);
   w.SetAttribute("/", "description", campaign.description);
   w.SetAttribute("/ship", "name", campaign.ship.name);
@@ -115,7 +115,7 @@ void WriteCampaignH5(const CaptiveCampaign& campaign, const fs::path& path) {
 
 CaptiveCampaign ReadCampaignH5(const fs::path& path) {
   if (!fs::exists(path)) throw DataFileError(fmt::format("{}: no such file", path.string()));
-  const data::H5Reader r(path);
+  const H5Reader r(path);
   const std::string src = path.string();
   if (!r.HasAttribute("/", "schema") || r.StringAttribute("/", "schema") != kCaptiveSchema) {
     throw DataFileError(fmt::format(
@@ -155,7 +155,7 @@ CaptiveCampaign ReadCampaignH5(const fs::path& path) {
       const std::string ds = g + "/" + std::string(channel);
       if (!r.Has(ds))
         throw DataFileError(fmt::format("{}: channel '{}' is missing", where, channel));
-      data::Series s = r.Read(ds);
+      Series s = r.Read(ds);
       if (s.cols != 1) {
         throw DataFileError(
             fmt::format("{}: channel '{}' has {} columns; expected 1", where, channel, s.cols));
@@ -188,7 +188,7 @@ void WriteRunCsv(const CaptiveRun& run, const fs::path& path) {
     out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", run.time[i], run.force[0][i],
                        run.force[1][i], run.force[2][i]);
   }
-  data::WriteFileAtomically(path, out);
+  WriteFileAtomically(path, out);
 }
 
 CaptiveRun ReadRunCsv(const fs::path& path) {
@@ -320,4 +320,4 @@ CaptiveRun ReadRunCsv(const fs::path& path) {
   return run;
 }
 
-}  // namespace kelvin::ident
+}  // namespace kelvin::data
