@@ -43,20 +43,10 @@ data::CaptiveRun GenerateRun(const sim::MmgModel<double>& model, const std::stri
   data::CaptiveRun run;
   run.name = name;
   run.includes_rigid_body_inertia = options.include_rigid_body_inertia;
-  std::size_t samples = 0;
-  double dt = 0;
-  if (data::IsHarmonic(motion.kind)) {
-    const double T = motion.Period();
-    motion.t_ramp = options.ramp_periods * T;
-    dt = T / options.samples_per_period;
-    samples = static_cast<std::size_t>((options.ramp_periods + options.periods) *
-                                       options.samples_per_period);
-  } else {
-    motion.t_ramp = options.steady_ramp;
-    dt = 1.0 / options.steady_rate;
-    samples = static_cast<std::size_t>(
-        std::llround((options.steady_ramp + options.steady_duration) / dt));
-  }
+  const data::RunSampleTimes times = data::SampleTimes(motion, options);
+  motion.t_ramp = times.t_ramp;
+  const double dt = times.dt;
+  const std::size_t samples = times.samples;
   run.motion = motion;
   run.time.resize(samples);
   for (auto& f : run.force) f.resize(samples);

@@ -107,4 +107,19 @@ std::vector<PlannedRun> PlanRuns(const CampaignDesign& design, double L,
   return runs;
 }
 
+RunSampleTimes SampleTimes(const MotionParameters& motion, const VirtualCaptiveOptions& options) {
+  RunSampleTimes r;
+  if (IsHarmonic(motion.kind)) {
+    const double T = motion.Period();
+    r.t_ramp = options.ramp_periods * T;
+    r.dt = T / options.samples_per_period;
+    r.samples = static_cast<std::size_t>((options.ramp_periods + options.periods) * options.samples_per_period);
+  } else {
+    r.t_ramp = options.steady_ramp;
+    r.dt = 1.0 / options.steady_rate;
+    r.samples = static_cast<std::size_t>(std::llround((options.steady_ramp + options.steady_duration) / r.dt));
+  }
+  return r;
+}
+
 }  // namespace kelvin::data

@@ -27,6 +27,17 @@ struct VirtualCaptiveOptions {
   void Validate() const;  // throws kelvin::ArgumentError naming the option
 };
 
+// The sample times of one run as the options sample it: harmonic runs
+// ramp_periods + periods whole periods of samples_per_period uniform
+// samples, steady runs steady_rate from t = 0 over steady_ramp +
+// steady_duration; t_ramp is ramp_periods periods or steady_ramp.
+struct RunSampleTimes {
+  double t_ramp = 0.0;  // s
+  double dt = 0.0;      // s
+  std::size_t samples = 0;
+};
+RunSampleTimes SampleTimes(const MotionParameters& motion, const VirtualCaptiveOptions& options);
+
 // A campaign design in prime quantities, at speed U.
 struct CampaignDesign {
   double U = 0;                          // m/s

@@ -10,6 +10,7 @@
 
 #include "data/schema/campaign_file.h"
 #include "identification/captive_force_model.h"
+#include "tests/data/schema/captive_test_fixtures.h"
 #include "tests/simulator/simulator_test_utilities.h"
 #include "tests/test_utilities/test_utilities.h"
 
@@ -18,18 +19,6 @@ namespace {
 
 using sim::testing::Kvlcc2;
 
-data::MotionParameters Motion(data::MotionKind kind) {
-  data::MotionParameters m;
-  m.kind = kind;
-  m.U = 1.2;
-  m.beta = 0.15;
-  m.y_a = 0.3;
-  m.psi_a = 0.2;
-  m.omega = 0.6;
-  m.r_prime = 0.4;
-  m.t_ramp = 4.0;
-  return m;
-}
 
 // A ship moving freely under its hull forces alone accelerates as
 // MmgModel::Accelerations says; then the rigid-body inertia force equals the
@@ -53,7 +42,7 @@ TEST(VirtualCaptiveTest, CaptiveForceModelMatchesMotionEquations) {
 
 TEST(VirtualCaptiveTest, CircularMotionRunIsSteadyAndAnalysed) {
   const sim::ShipParameters ship = Kvlcc2();
-  data::MotionParameters m = Motion(data::MotionKind::kCircularMotion);
+  data::MotionParameters m = data::fixtures::SampleMotion(data::MotionKind::kCircularMotion);
   const data::CaptiveRun run = GenerateRun(sim::MmgModel<double>(ship), "arm", m, {});
   const std::array<double, 3> f0 = {run.force[0].back(), run.force[1].back(), run.force[2].back()};
   for (int c = 0; c < 3; ++c)

@@ -79,5 +79,19 @@ TEST(CaptivePlanTest, RunsAreNamedAndRampedFromTheDesign) {
   EXPECT_EQ(runs[4].motion.t_ramp, 3.0);
 }
 
+TEST(CaptivePlanTest, SampleTimesOfHarmonicAndSteadyRuns) {
+  const VirtualCaptiveOptions o;  // 200 samples per period, 1 + 5 periods; steady 5 + 20 s at 10 Hz
+  MotionParameters sway{.kind = MotionKind::kPureSway, .U = 1.0, .y_a = 0.1, .omega = 0.5};
+  const RunSampleTimes h = SampleTimes(sway, o);
+  const double T = 2 * std::numbers::pi / 0.5;
+  EXPECT_DOUBLE_EQ(h.t_ramp, T);
+  EXPECT_DOUBLE_EQ(h.dt, T / 200);
+  EXPECT_EQ(h.samples, 6u * 200u);
+  const RunSampleTimes s = SampleTimes({.kind = MotionKind::kStaticDrift, .U = 1.0, .beta = 0.1}, o);
+  EXPECT_EQ(s.t_ramp, 5.0);
+  EXPECT_EQ(s.dt, 0.1);
+  EXPECT_EQ(s.samples, 250u);
+}
+
 }  // namespace
 }  // namespace kelvin::data

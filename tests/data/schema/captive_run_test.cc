@@ -15,38 +15,26 @@ namespace {
 
 using fixtures::Kvlcc2Ship;
 
-MotionParameters Motion(MotionKind kind) {
-  MotionParameters m;
-  m.kind = kind;
-  m.U = 1.2;
-  m.beta = 0.15;
-  m.y_a = 0.3;
-  m.psi_a = 0.2;
-  m.omega = 0.6;
-  m.r_prime = 0.4;
-  m.t_ramp = 4.0;
-  return m;
-}
 
 TEST(CaptiveRunTest, ClosedFormKinematics) {
   const double L = 7.0, t = 3.3;
-  const MotionParameters sway = Motion(MotionKind::kPureSway);
+  const MotionParameters sway = fixtures::SampleMotion(MotionKind::kPureSway);
   const BodyKinematics s = KinematicsAt(sway, L, t);
   EXPECT_DOUBLE_EQ(s.u, 1.2);
   EXPECT_NEAR(s.v, -0.3 * 0.6 * std::cos(0.6 * t), 1e-15);
   EXPECT_NEAR(s.dv, 0.3 * 0.36 * std::sin(0.6 * t), 1e-15);
   EXPECT_EQ(s.r, 0.0);
-  const BodyKinematics y = KinematicsAt(Motion(MotionKind::kPureYaw), L, t);
+  const BodyKinematics y = KinematicsAt(fixtures::SampleMotion(MotionKind::kPureYaw), L, t);
   EXPECT_NEAR(y.r, -0.2 * 0.6 * std::sin(0.6 * t), 1e-15);
   EXPECT_NEAR(y.dr, -0.2 * 0.36 * std::cos(0.6 * t), 1e-15);
   // The PMM yaw law keeps the drift small: v = U (psi cos psi - sin psi) ~ -U psi^3 / 3.
   const double psi = 0.2 * std::cos(0.6 * t);
   EXPECT_NEAR(y.v, 1.2 * (psi * std::cos(psi) - std::sin(psi)), 1e-15);
-  const BodyKinematics d = KinematicsAt(Motion(MotionKind::kStaticDrift), L, 10.0);
+  const BodyKinematics d = KinematicsAt(fixtures::SampleMotion(MotionKind::kStaticDrift), L, 10.0);
   EXPECT_NEAR(-std::atan(d.v / d.u), 0.15, 1e-15);  // beta = -atan(v/u) = psi
   EXPECT_NEAR(std::hypot(d.u, d.v), 1.2, 1e-15);
-  EXPECT_EQ(KinematicsAt(Motion(MotionKind::kStaticDrift), L, 0.0).u, 0.0);  // ramp starts at rest
-  const BodyKinematics c = KinematicsAt(Motion(MotionKind::kCircularMotion), L, t);
+  EXPECT_EQ(KinematicsAt(fixtures::SampleMotion(MotionKind::kStaticDrift), L, 0.0).u, 0.0);  // ramp starts at rest
+  const BodyKinematics c = KinematicsAt(fixtures::SampleMotion(MotionKind::kCircularMotion), L, t);
   EXPECT_NEAR(c.r * L / 1.2, 0.4, 1e-15);
   EXPECT_NEAR(-std::atan(c.v / c.u), 0.15, 1e-15);
   EXPECT_EQ(c.du, 0.0);
@@ -57,7 +45,7 @@ TEST(CaptiveRunTest, ClosedFormKinematics) {
 TEST(CaptiveRunTest, AccelerationsAreDerivativesOfVelocities) {
   for (MotionKind kind : {MotionKind::kStaticDrift, MotionKind::kPureSway, MotionKind::kPureYaw,
                           MotionKind::kYawDrift}) {
-    const MotionParameters m = Motion(kind);
+    const MotionParameters m = fixtures::SampleMotion(kind);
     for (double t : {1.0, 2.7, 5.5, 9.1}) {
       const double h = 1e-5;
       const BodyKinematics a = KinematicsAt(m, 7.0, t - h), b = KinematicsAt(m, 7.0, t + h);
@@ -93,7 +81,7 @@ TEST(CaptiveRunTest, BadShipDataNamesTheAttribute) {
 TEST(CaptiveRunTest, DuplicateRunNamesAreRejected) {
   CaptiveCampaign c;
   c.ship = Kvlcc2Ship();
-  const CaptiveRun run = fixtures::SampledRun(c.ship, "sway", Motion(MotionKind::kPureSway));
+  const CaptiveRun run = fixtures::SampledRun(c.ship, "sway", fixtures::SampleMotion(MotionKind::kPureSway));
   c.runs = {run, run};
   try {
     ValidateCampaign(c, "runs.csv");

@@ -1,5 +1,5 @@
 // Captive campaigns for the schema tests, made without any hydrodynamic
-// model: the KVLCC2 L7 ship data (data/ships/kvlcc2.yaml) and runs sampled
+// model (and the sample motion of the kinematics tests): the KVLCC2 L7 ship data (data/ships/kvlcc2.yaml) and runs sampled
 // like the virtual captive generator samples them (harmonic runs: whole
 // periods of uniform samples after ramp_periods periods; steady runs: a
 // fixed rate from t = 0), with smooth synthetic forces (a linear hull minus
@@ -11,6 +11,7 @@
 #include <numbers>
 #include <string>
 
+#include "data/schema/captive_plan.h"
 #include "data/schema/captive_run.h"
 
 namespace kelvin::data::fixtures {
@@ -29,34 +30,39 @@ inline CaptiveShip Kvlcc2Ship() {
   return s;
 }
 
-struct Sampling {
-  int samples_per_period = 50;  // harmonic runs
-  int ramp_periods = 1;
-  int periods = 2;
-  double steady_ramp = 5.0;      // s
-  double steady_duration = 3.0;  // s
-  double steady_rate = 10.0;     // Hz
-};
+// A motion with every parameter set (each kind reads its own).
+inline MotionParameters SampleMotion(MotionKind kind) {
+  MotionParameters m;
+  m.kind = kind;
+  m.U = 1.2;
+  m.beta = 0.15;
+  m.y_a = 0.3;
+  m.psi_a = 0.2;
+  m.omega = 0.6;
+  m.r_prime = 0.4;
+  m.t_ramp = 4.0;
+  return m;
+}
+
+// The schema tests' sampling: shorter than the generator's defaults.
+inline VirtualCaptiveOptions Sampling() {
+  VirtualCaptiveOptions o;
+  o.samples_per_period = 50;
+  o.periods = 2;
+  o.steady_duration = 3.0;
+  return o;
+}
 
 // One run of `motion` (its t_ramp set from `sampling`).
 inline CaptiveRun SampledRun(const CaptiveShip& ship, const std::string& name,
-                             MotionParameters motion, const Sampling& sampling = {}) {
+                             MotionParameters motion, const VirtualCaptiveOptions& sampling = Sampling()) {
   CaptiveRun run;
   run.name = name;
   run.includes_rigid_body_inertia = true;
-  std::size_t samples = 0;
-  double dt = 0;
-  if (IsHarmonic(motion.kind)) {
-    motion.t_ramp = sampling.ramp_periods * motion.Period();
-    dt = motion.Period() / sampling.samples_per_period;
-    samples = static_cast<std::size_t>((sampling.ramp_periods + sampling.periods) *
-                                       sampling.samples_per_period);
-  } else {
-    motion.t_ramp = sampling.steady_ramp;
-    dt = 1.0 / sampling.steady_rate;
-    samples = static_cast<std::size_t>(
-        std::llround((sampling.steady_ramp + sampling.steady_duration) / dt));
-  }
+  const RunSampleTimes times = SampleTimes(motion, sampling);
+  motion.t_ramp = times.t_ramp;
+  const double dt = times.dt;
+  const std::size_t samples = times.samples;
   run.motion = motion;
   const double q = ship.ForceScale();
   for (std::size_t i = 0; i < samples; ++i) {
