@@ -154,6 +154,16 @@ class PimpleSolver {
   void PressureCorrector(double dt, bool final_corrector, double alpha_U, double alpha_p,
                          const std::vector<Vector3>& U_prev, const std::vector<double>& phi_prev,
                          StepSummary& summary, bool first_pressure_solve);
+  // Rhie-Chow flux of HbyA on every face with the transient and the
+  // relaxation-consistent terms, and rAU on the faces.
+  void FluxHbyA(double dt, bool backward, double alpha_U, const std::vector<Vector3>& U_prev,
+                const std::vector<double>& phi_prev, const std::vector<double>& rAU, const std::vector<Vector3>& HbyA,
+                std::vector<double>& rAUf, std::vector<double>& phi_HbyA);
+  // The pressure equation laplacian(rAU, p) == div(phiHbyA), solved
+  // 1 + n_non_orthogonal times; leaves the conservative flux
+  // F = phiHbyA - rAU |S| snGrad(p) of the last solve in phi_.
+  void SolvePressure(std::span<const double> rAUf, std::span<const double> phi_HbyA, bool final_corrector,
+                     bool first_pressure_solve, StepSummary& summary);
   // F - F_mesh on every face (refreshed on each call).
   std::span<const double> RelativeFlux();
   double ContinuityError(double* global) const;
@@ -179,6 +189,7 @@ class PimpleSolver {
   Gradient grad_;
   NonOrthGeometry non_orth_;
   FvMatrix<Vector3> UEqn_;
+  FvMatrix<double> pEqn_;
   // One matrix with the mesh sparsity, refilled for each momentum component
   // and for the pressure (the AMG solver keeps its own copy).
   SparseSystem system_;
