@@ -243,6 +243,25 @@ void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, std::span<const dou
   LaplacianImpl(m, field, [gamma_faces](int f) { return gamma_faces[f]; }, geo, grad);
 }
 
+void AddDivDev2Transpose(FvMatrix<Vector3>& m, std::span<const double> gamma_faces, const std::vector<Matrix3>& grad) {
+  const Mesh& mesh = m.mesh();
+  const int ni = mesh.n_internal_faces();
+  const auto owner = mesh.owner();
+  const auto neighbour = mesh.neighbour();
+  const auto w = mesh.weights();
+  const auto sf = mesh.face_areas();
+  auto face_flux = [&](const Matrix3& J, int f) -> Vector3 {
+    return gamma_faces[f] * (J.transpose() * sf[f] - (2.0 / 3.0) * J.trace() * sf[f]);
+  };
+  for (int f = 0; f < ni; ++f) {
+    const int P = owner[f], N = neighbour[f];
+    const Vector3 t = face_flux(w[f] * grad[P] + (1.0 - w[f]) * grad[N], f);
+    m.source[P] += t;
+    m.source[N] -= t;
+  }
+  for (int f = ni; f < mesh.n_faces(); ++f) m.source[owner[f]] += face_flux(grad[owner[f]], f);
+}
+
 void AddDivergence(FvMatrix<double>& m, std::span<const double> face_flux) {
   const Mesh& mesh = m.mesh();
   const int ni = mesh.n_internal_faces();

@@ -8,7 +8,8 @@
 //       = source_P + sum_b boundary_coeffs_b
 //
 // The operators below add terms to a matrix so that an equation reads like
-// the maths: AddDdt, AddConvection, AddLaplacian, AddDivergence, AddSource.
+// the maths: AddDdt, AddConvection, AddLaplacian, AddDivDev2Transpose,
+// AddDivergence, AddSource.
 // Free functions on spans (below the matrix operators) give the face fluxes
 // of a Laplacian, for the conservative flux of the pressure equation
 // (docs/lfs-formulation.md section 4).
@@ -83,6 +84,13 @@ void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, double gamma, const
 template <typename T>
 void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, std::span<const double> gamma_faces,
                   const NonOrthGeometry& geo, const std::vector<GradType<T>>* grad);
+
+// Explicit -div(gamma dev2(grad(U)^T)) on the left-hand side (the
+// transposed-gradient part of the viscous stress): with J(i, j) = du_i/dx_j
+// the face flux gamma_f (J_f^T - 2/3 tr(J_f) I) S_f goes to the source, J_f
+// interpolated linearly on internal faces and the owner value on boundary
+// faces. `gamma_faces` on every face, `grad` the cell gradient of U.
+void AddDivDev2Transpose(FvMatrix<Vector3>& m, std::span<const double> gamma_faces, const std::vector<Matrix3>& grad);
 
 // Explicit div(F) = sum_f F_f (F_f out of the owner) on the left-hand side:
 // internal faces go to the source, boundary faces to boundary_coeffs. With

@@ -138,26 +138,11 @@ void PimpleSolver::AssembleMomentum(double dt, std::span<const double> flux_rel)
   AddDdt(UEqn_, *U_, dt, schemes_.time);
   grad_.Compute(std::span<const Vector3>(U_->values()), std::span<const Vector3>(U_->boundary()), grad_U_);
   AddConvection(UEqn_, *U_, flux_rel, schemes_.convection, grad_U_);
-  if (!turbulence_) {
-    AddLaplacian(UEqn_, *U_, physics_.nu, non_orth_, non_orth_correction_ ? &grad_U_ : nullptr);
+  // div(dev(R_eff)): the turbulence model's, or the laminar one.
+  if (turbulence_) {
+    turbulence_->AddDivDevReff(UEqn_, *U_, grad_U_, non_orth_, non_orth_correction_);
   } else {
-    const std::vector<double>& nu_eff = turbulence_->nu_eff_faces();
-    AddLaplacian(UEqn_, *U_, std::span<const double>(nu_eff), non_orth_, non_orth_correction_ ? &grad_U_ : nullptr);
-    // div(nu_eff dev2(grad(U)^T)): with J(i, j) = du_i/dx_j the face flux of
-    // the transposed gradient is (J^T - 2/3 tr(J) I) S_f.
-    const int ni = mesh_.n_internal_faces();
-    const auto w = mesh_.weights();
-    const auto sf = mesh_.face_areas();
-    auto transposed = [&](const Matrix3& J, int f) -> Vector3 {
-      return nu_eff[f] * (J.transpose() * sf[f] - (2.0 / 3.0) * J.trace() * sf[f]);
-    };
-    for (int f = 0; f < ni; ++f) {
-      const int P = mesh_.owner()[f], N = mesh_.neighbour()[f];
-      const Vector3 t = transposed(w[f] * grad_U_[P] + (1.0 - w[f]) * grad_U_[N], f);
-      UEqn_.source[P] += t;
-      UEqn_.source[N] -= t;
-    }
-    for (int f = ni; f < mesh_.n_faces(); ++f) UEqn_.source[mesh_.owner()[f]] += transposed(grad_U_[mesh_.owner()[f]], f);
+    AddLaminarDivDevReff(UEqn_, *U_, physics_.nu, grad_U_, non_orth_, non_orth_correction_);
   }
   if (physics_.source) {
     source_.resize(mesh_.n_cells());

@@ -1,7 +1,9 @@
 // Incompressible PIMPLE solver on collocated polyhedral cells (see
 // docs/formulation.md section 4). One time step:
 //   outer correctors (with under-relaxation and residual control)
-//     momentum predictor: ddt(U) + div(F - F_mesh, U) - div(nu grad U) = -grad p + s
+//     momentum predictor: ddt(U) + div(F - F_mesh, U) + div(dev(R_eff)) = -grad p + s,
+//       div(dev(R_eff)) from the turbulence model (AddDivDevReff), or
+//       -div(nu grad U) when laminar
 //     PISO correctors: Rhie-Chow flux of HbyA with the transient and
 //       relaxation-consistent terms; pressure equation with non-orthogonal
 //       correctors (CG + BoomerAMG); conservative flux update; U correction.
@@ -99,10 +101,11 @@ class PimpleSolver {
   const std::vector<double>& flux() const { return phi_; }
   // Mesh-motion hook: F_mesh on every face (m^3/s).
   void SetMeshFlux(std::vector<double> mesh_flux);
-  // RANS closure (null: laminar). The momentum equation then uses the
-  // model's face viscosities nu + nu_t (with the wall-function values on
-  // walls) and the explicit div(nu_eff dev2(grad(U)^T)) term; the model is
-  // corrected once per time step after the final outer iteration.
+  // RANS closure (null: laminar). The momentum equation then takes its
+  // stress term from the model (TurbulenceModel::AddDivDevReff: the face
+  // viscosities nu + nu_t, with the wall-function values on walls, and the
+  // explicit div(nu_eff dev2(grad(U)^T)) term); the model is corrected once
+  // per time step after the final outer iteration.
   void SetTurbulence(std::unique_ptr<TurbulenceModel> model);
   TurbulenceModel* turbulence() { return turbulence_.get(); }
   const TurbulenceModel* turbulence() const { return turbulence_.get(); }

@@ -1,9 +1,11 @@
 // Interface between the PIMPLE solver and a RANS turbulence model
-// (architecture: the turbulenceCorrector stage). The solver asks for the
-// effective viscosity nu + nu_t on every face (on walls: the wall-function
-// value that carries the wall shear stress) and calls Correct() after the
-// pressure correctors of each time step with the current velocity, its
-// gradient and the relative face flux.
+// (architecture: the turbulenceCorrector stage). The model adds the stress
+// term div(dev(R_eff)) to the momentum equation (AddDivDevReff, from the
+// effective viscosity nu + nu_t on every face; on walls the wall-function
+// value that carries the wall shear stress), and the solver calls Correct()
+// after the pressure correctors of each time step with the current
+// velocity, its gradient and the relative face flux. Without a model the
+// solver uses AddLaminarDivDevReff (docs/lfs-formulation.md section 4).
 #pragma once
 
 #include <span>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "cfd/field/field.h"
+#include "cfd/fv/fv_matrix.h"
 #include "cfd/fv/gradient.h"
 
 namespace kelvin::cfd {
@@ -61,6 +64,18 @@ class TurbulenceModel {
   virtual void RefreshGeometry() = 0;
   // nu + nu_t on every face (m^2/s).
   virtual const std::vector<double>& nu_eff_faces() const = 0;
+  // div(dev(R_eff)) of the momentum equation on its left-hand side
+  // (OpenFOAM's divDevReff(U)), with nu_eff = nu_eff_faces():
+  //   -div(nu_eff grad(U))           implicit; its non-orthogonal part
+  //                                  explicit from grad_U when asked
+  //   -div(nu_eff dev2(grad(U)^T))   explicit from grad_U
+  // grad_U: J(i, j) = du_i / dx_j per cell.
+  virtual void AddDivDevReff(FvMatrix<Vector3>& UEqn, const VectorField& U, const std::vector<Matrix3>& grad_U,
+                             const NonOrthGeometry& geo, bool non_orthogonal_correction) const {
+    const std::span<const double> nu_eff(nu_eff_faces());
+    AddLaplacian(UEqn, U, nu_eff, geo, non_orthogonal_correction ? &grad_U : nullptr);
+    AddDivDev2Transpose(UEqn, nu_eff, grad_U);
+  }
   // Turbulent viscosity per cell (m^2/s).
   virtual const std::vector<double>& nu_t() const = 0;
   // Kinematic wall shear stress vector per boundary face (index face -
@@ -75,5 +90,15 @@ class TurbulenceModel {
   virtual std::vector<std::pair<std::string, std::vector<double>>> State() const = 0;
   virtual void SetState(const std::vector<std::pair<std::string, std::vector<double>>>& state) = 0;
 };
+
+// The laminar div(dev(R_eff)) with the constant viscosity nu (m^2/s), used
+// when no turbulence model is set: -div(nu grad(U)) only. The explicit
+// -div(nu dev2(grad(U)^T)) part is omitted, as kelvin always has for laminar
+// flow: with constant nu it is -nu grad(div U) / 3, zero for a solenoidal U.
+inline void AddLaminarDivDevReff(FvMatrix<Vector3>& UEqn, const VectorField& U, double nu,
+                                 const std::vector<Matrix3>& grad_U, const NonOrthGeometry& geo,
+                                 bool non_orthogonal_correction) {
+  AddLaplacian(UEqn, U, nu, geo, non_orthogonal_correction ? &grad_U : nullptr);
+}
 
 }  // namespace kelvin::cfd
