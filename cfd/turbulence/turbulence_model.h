@@ -19,6 +19,46 @@
 
 namespace kelvin::cfd {
 
+// What a model does on each patch (TurbulencePatchRoles derives it from the
+// velocity and pressure conditions).
+enum class TurbulencePatchRole {
+  kInflow,    // fixed k and omega from the inflow turbulence
+  kOutflow,   // inflow values where the flux enters, zero gradient where it leaves
+  kWall,      // wall functions / low-Re wall treatment
+  kSymmetry,  // zero gradient (slip walls, symmetry planes, the free surface)
+  kEmpty,     // front and back of 2D meshes
+};
+
+// The turbulence role of a patch from the roles of its conditions, in this
+// order: an empty, inflow, wall or symmetry velocity condition gives kEmpty,
+// kInflow, kWall or kSymmetry; otherwise the free-surface pressure condition
+// gives kSymmetry and anything else (zero gradient, inletOutlet, farField
+// velocity) kOutflow.
+inline TurbulencePatchRole TurbulencePatchRoleOf(const BoundaryCondition<Vector3>& U,
+                                                 const BoundaryCondition<double>& p) {
+  switch (U.role()) {
+    case PatchRole::kEmpty:
+      return TurbulencePatchRole::kEmpty;
+    case PatchRole::kInflow:
+      return TurbulencePatchRole::kInflow;
+    case PatchRole::kWall:
+      return TurbulencePatchRole::kWall;
+    case PatchRole::kSymmetry:
+      return TurbulencePatchRole::kSymmetry;
+    default:
+      break;
+  }
+  return p.role() == PatchRole::kFreeSurface ? TurbulencePatchRole::kSymmetry : TurbulencePatchRole::kOutflow;
+}
+
+// One role per mesh patch, from the conditions of U and p.
+inline std::vector<TurbulencePatchRole> TurbulencePatchRoles(const VectorField& U, const ScalarField& p) {
+  KELVIN_CHECK(U.n_patches() == p.n_patches(), "U and p on the same patches");
+  std::vector<TurbulencePatchRole> roles;
+  for (int k = 0; k < U.n_patches(); ++k) roles.push_back(TurbulencePatchRoleOf(U.bc(k), p.bc(k)));
+  return roles;
+}
+
 struct TurbulenceInputs {
   const VectorField& U;
   const std::vector<Matrix3>& grad_U;  // J(i, j) = du_i / dx_j per cell
