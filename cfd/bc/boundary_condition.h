@@ -62,7 +62,7 @@ struct PressureCoupling {
 // condition's class, or at construction where one class serves two roles:
 // a fixed velocity is an inflow or a no-slip wall at rest). The turbulence
 // model takes its patch treatment from these (TurbulencePatchRoles in
-// cfd/turbulence/turbulence_model.h).
+// cfd/turbulence/turbulence_model.h; docs/formulation.md section 8.1).
 enum class PatchRole {
   kUnspecified,  // the condition does not say (zero gradient, mixed)
   kInflow,       // prescribed velocity

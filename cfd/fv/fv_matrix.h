@@ -12,7 +12,7 @@
 // AddDivergence, AddSource.
 // Free functions on spans (below the matrix operators) give the face fluxes
 // of a Laplacian, for the conservative flux of the pressure equation
-// (docs/lfs-formulation.md section 4).
+// (docs/formulation.md sections 4.4 and 10).
 #pragma once
 
 #include <span>

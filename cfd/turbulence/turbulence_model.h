@@ -5,7 +5,7 @@
 // value that carries the wall shear stress), and the solver calls Correct()
 // after the pressure correctors of each time step with the current
 // velocity, its gradient and the relative face flux. Without a model the
-// solver uses AddLaminarDivDevReff (docs/lfs-formulation.md section 4).
+// solver uses AddLaminarDivDevReff (docs/formulation.md sections 4.2 and 8).
 #pragma once
 
 #include <span>
@@ -20,7 +20,7 @@
 namespace kelvin::cfd {
 
 // What a model does on each patch (TurbulencePatchRoles derives it from the
-// velocity and pressure conditions).
+// velocity and pressure conditions; docs/formulation.md section 8.1).
 enum class TurbulencePatchRole {
   kInflow,    // fixed k and omega from the inflow turbulence
   kOutflow,   // inflow values where the flux enters, zero gradient where it leaves
@@ -105,7 +105,8 @@ class TurbulenceModel {
   // nu + nu_t on every face (m^2/s).
   virtual const std::vector<double>& nu_eff_faces() const = 0;
   // div(dev(R_eff)) of the momentum equation on its left-hand side
-  // (OpenFOAM's divDevReff(U)), with nu_eff = nu_eff_faces():
+  // (OpenFOAM's divDevReff(U); docs/formulation.md section 4.2), with
+  // nu_eff = nu_eff_faces():
   //   -div(nu_eff grad(U))           implicit; its non-orthogonal part
   //                                  explicit from grad_U when asked
   //   -div(nu_eff dev2(grad(U)^T))   explicit from grad_U
