@@ -359,8 +359,11 @@ void LaplacianFlux(const CellField<double>& field, std::span<const double> gamma
 void NonOrthogonalFlux(const Mesh& mesh, std::span<const double> gamma_faces, std::span<const Vector3> grad,
                        const NonOrthGeometry& geo, std::vector<double>& flux) {
   const int ni = mesh.n_internal_faces();
-  flux.assign(ni, 0.0);
-  if (!geo.any_correction) return;
+  if (!geo.any_correction) {
+    flux.assign(ni, 0.0);
+    return;
+  }
+  flux.resize(ni);
   const auto owner = mesh.owner();
   const auto neighbour = mesh.neighbour();
   const auto w = mesh.weights();

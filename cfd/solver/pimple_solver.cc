@@ -288,7 +288,9 @@ void PimpleSolver::SolvePressure(std::span<const double> rAUf, std::span<const d
   const int ni = mesh_.n_internal_faces();
   // Without a boundary that fixes the level, the reference cell fixes it.
   const bool needs_reference = NeedsReference(*p_);
-  std::vector<double> face_corr(ni, 0.0), known(phi_HbyA.begin(), phi_HbyA.end()), diag, rhs;
+  auto& [face_corr, known, diag, rhs, laplacian_flux] = pressure_scratch_;
+  face_corr.assign(ni, 0.0);
+  known.assign(phi_HbyA.begin(), phi_HbyA.end());
   for (int non_orth = 0; non_orth <= pimple_.n_non_orthogonal; ++non_orth) {
     const bool last_non_orth = non_orth == pimple_.n_non_orthogonal;
     if (non_orth_correction_) {
@@ -316,7 +318,6 @@ void PimpleSolver::SolvePressure(std::span<const double> rAUf, std::span<const d
     p_->CorrectBoundary(time_, RelativeFlux());
   }
   // Conservative flux from the same discrete operator and the last pressure.
-  std::vector<double> laplacian_flux;
   LaplacianFlux(*p_, rAUf, non_orth_, laplacian_flux);
   for (int f = 0; f < ni; ++f) phi_[f] = phi_HbyA[f] - laplacian_flux[f] - face_corr[f];
   for (int f = ni; f < mesh_.n_faces(); ++f) phi_[f] = phi_HbyA[f] - laplacian_flux[f];

@@ -193,6 +193,11 @@ class PimpleSolver {
   NonOrthGeometry non_orth_;
   FvMatrix<Vector3> UEqn_;
   FvMatrix<double> pEqn_;
+  // Work arrays of SolvePressure, kept across correctors.
+  struct PressureScratch {
+    std::vector<double> face_corr, known, diag, rhs, laplacian_flux;
+  };
+  PressureScratch pressure_scratch_;
   // One matrix with the mesh sparsity, refilled for each momentum component
   // and for the pressure (the AMG solver keeps its own copy).
   SparseSystem system_;
