@@ -288,15 +288,20 @@ void PimpleSolver::SolvePressure(std::span<const double> rAUf, std::span<const d
   const int ni = mesh_.n_internal_faces();
   // Without a boundary that fixes the level, the reference cell fixes it.
   const bool needs_reference = NeedsReference(*p_);
-  auto& [face_corr, known, diag, rhs, laplacian_flux] = pressure_scratch_;
-  face_corr.assign(ni, 0.0);
-  known.assign(phi_HbyA.begin(), phi_HbyA.end());
+  auto& [face_corr, known_flux, diag, rhs, laplacian_flux] = pressure_scratch_;
+  // The flux known before the solve: phiHbyA, less the non-orthogonal part
+  // of the Laplacian on corrected meshes.
+  std::span<const double> known = phi_HbyA;
+  if (non_orth_correction_) {
+    known_flux.assign(phi_HbyA.begin(), phi_HbyA.end());
+    known = known_flux;
+  }
   for (int non_orth = 0; non_orth <= pimple_.n_non_orthogonal; ++non_orth) {
     const bool last_non_orth = non_orth == pimple_.n_non_orthogonal;
     if (non_orth_correction_) {
       grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
       NonOrthogonalFlux(mesh_, rAUf, grad_p_, non_orth_, face_corr);
-      for (int f = 0; f < ni; ++f) known[f] = phi_HbyA[f] - face_corr[f];
+      for (int f = 0; f < ni; ++f) known_flux[f] = phi_HbyA[f] - face_corr[f];
     }
     // Continuity of F = phiHbyA - rAU |S| snGrad(p): laplacian(rAU, p) ==
     // div(phiHbyA), with the non-orthogonal part of snGrad explicit (it
@@ -319,8 +324,10 @@ void PimpleSolver::SolvePressure(std::span<const double> rAUf, std::span<const d
   }
   // Conservative flux from the same discrete operator and the last pressure.
   LaplacianFlux(*p_, rAUf, non_orth_, laplacian_flux);
-  for (int f = 0; f < ni; ++f) phi_[f] = phi_HbyA[f] - laplacian_flux[f] - face_corr[f];
-  for (int f = ni; f < mesh_.n_faces(); ++f) phi_[f] = phi_HbyA[f] - laplacian_flux[f];
+  for (int f = 0; f < mesh_.n_faces(); ++f) phi_[f] = phi_HbyA[f] - laplacian_flux[f];
+  if (non_orth_correction_) {
+    for (int f = 0; f < ni; ++f) phi_[f] -= face_corr[f];
+  }
 }
 
 double PimpleSolver::ContinuityError(double* global) const {

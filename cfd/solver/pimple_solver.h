@@ -195,7 +195,7 @@ class PimpleSolver {
   FvMatrix<double> pEqn_;
   // Work arrays of SolvePressure, kept across correctors.
   struct PressureScratch {
-    std::vector<double> face_corr, known, diag, rhs, laplacian_flux;
+    std::vector<double> face_corr, known_flux, diag, rhs, laplacian_flux;
   };
   PressureScratch pressure_scratch_;
   // One matrix with the mesh sparsity, refilled for each momentum component
