@@ -12,6 +12,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -57,6 +58,21 @@ struct PressureCoupling {
   std::span<const double> flux_HbyA;   // Rhie-Chow flux of H/A (m^3/s)
 };
 
+// What a patch is to the flow, as its condition states it (set by the
+// condition's class, or at construction where one class serves two roles:
+// a fixed velocity is an inflow or a no-slip wall at rest). The turbulence
+// model takes its patch treatment from these (TurbulencePatchRoles in
+// cfd/turbulence/turbulence_model.h; docs/formulation.md section 8.1).
+enum class PatchRole {
+  kUnspecified,  // the condition does not say (zero gradient, mixed)
+  kInflow,       // prescribed velocity
+  kOutflow,      // inflow or outflow as the flux decides (inletOutlet, farField)
+  kWall,         // no-slip wall, at rest or moving
+  kSymmetry,     // slip wall or symmetry plane
+  kFreeSurface,  // the linearized free surface (a pressure condition)
+  kEmpty,        // front and back of a 2D mesh
+};
+
 // What a condition may look at when it updates.
 struct BcContext {
   const Mesh& mesh;
@@ -72,6 +88,7 @@ class BoundaryCondition {
   // Recomputes the coefficients for the current time, flux and cell values.
   virtual void Update(const BcContext& ctx, std::span<const T> cell_values) = 0;
   virtual std::string type() const = 0;
+  virtual PatchRole role() const { return PatchRole::kUnspecified; }
   // True when the face value does not depend on the cell value (fixed
   // velocity: the boundary flux is prescribed).
   virtual bool fixes_value() const { return false; }
@@ -126,12 +143,16 @@ class BoundaryCondition {
 template <typename T>
 using ValueFunction = std::function<T(const Vector3& x, double t)>;
 
-// Dirichlet: phi_b = value(x_f, t). For p this is the fixed pressure.
+// Dirichlet: phi_b = value(x_f, t). For p this is the fixed pressure. The
+// role defaults to kInflow for a velocity (kUnspecified for a scalar); a
+// no-slip wall at rest is FixedValue<Vector3>(Vector3(0, 0, 0), PatchRole::kWall).
 template <typename T>
 class FixedValue : public BoundaryCondition<T> {
  public:
-  explicit FixedValue(ValueFunction<T> value) : value_(std::move(value)) {}
-  explicit FixedValue(const T& uniform) : value_([uniform](const Vector3&, double) { return uniform; }) {}
+  explicit FixedValue(ValueFunction<T> value, PatchRole role = DefaultRole())
+      : value_(std::move(value)), role_(role) {}
+  explicit FixedValue(const T& uniform, PatchRole role = DefaultRole())
+      : value_([uniform](const Vector3&, double) { return uniform; }), role_(role) {}
   void Update(const BcContext& ctx, std::span<const T>) override {
     this->Resize(ctx.patch.size);
     for (int i = 0; i < ctx.patch.size; ++i) {
@@ -140,10 +161,15 @@ class FixedValue : public BoundaryCondition<T> {
     }
   }
   std::string type() const override { return "fixedValue"; }
+  PatchRole role() const override { return role_; }
   bool fixes_value() const override { return true; }
 
  private:
+  static constexpr PatchRole DefaultRole() {
+    return std::is_same_v<T, Vector3> ? PatchRole::kInflow : PatchRole::kUnspecified;
+  }
   ValueFunction<T> value_;
+  PatchRole role_;
 };
 
 // Neumann with zero normal gradient: phi_b = phi_P.
@@ -163,6 +189,7 @@ template <typename T>
 class Empty : public ZeroGradient<T> {
  public:
   std::string type() const override { return "empty"; }
+  PatchRole role() const override { return PatchRole::kEmpty; }
 };
 
 // No-slip wall moving rigidly: u_b = U + omega x (x_f - x0). With zero
@@ -177,6 +204,7 @@ class MovingWall : public BoundaryCondition<Vector3> {
   explicit MovingWall(std::function<Motion(double t)> motion) : motion_(std::move(motion)) {}
   void Update(const BcContext& ctx, std::span<const Vector3>) override;
   std::string type() const override { return "movingWall"; }
+  PatchRole role() const override { return PatchRole::kWall; }
   bool fixes_value() const override { return true; }
 
  private:
@@ -190,6 +218,7 @@ class Slip : public BoundaryCondition<Vector3> {
   explicit Slip(std::string type = "slip") : type_(std::move(type)) {}
   void Update(const BcContext& ctx, std::span<const Vector3> cell_values) override;
   std::string type() const override { return type_; }
+  PatchRole role() const override { return PatchRole::kSymmetry; }
   bool fixes_value() const override { return true; }  // zero normal flux
 
  private:
@@ -215,6 +244,7 @@ class InletOutlet : public BoundaryCondition<T> {
     }
   }
   std::string type() const override { return "inletOutlet"; }
+  PatchRole role() const override { return PatchRole::kOutflow; }
 
  private:
   T inflow_;

@@ -29,6 +29,7 @@ class OutletInlet : public BoundaryCondition<T> {
     }
   }
   std::string type() const override { return "outletInlet"; }
+  PatchRole role() const override { return PatchRole::kOutflow; }
 
  private:
   T outflow_;
@@ -73,6 +74,7 @@ class FarField : public BoundaryCondition<T> {
     }
   }
   std::string type() const override { return "farField"; }
+  PatchRole role() const override { return PatchRole::kOutflow; }
 
  private:
   T value_;

@@ -129,6 +129,7 @@ class LinearizedFreeSurface : public Mixed<double> {
   void PreparePressureSolve(const BcContext& ctx, const PressureCoupling& coupling) override;
   void CorrectAfterFlux(const BcContext& ctx, std::span<const double> face_flux) override;
   std::string type() const override { return "linearizedFreeSurface"; }
+  PatchRole role() const override { return PatchRole::kFreeSurface; }
   std::vector<std::pair<std::string, std::vector<double>>> FaceFields() const override;
   // [time, started, old levels, rigid lid, eta, eta^n, eta^{n-1}] (old
   // levels padded with zeros); SetState also reads the older layout without

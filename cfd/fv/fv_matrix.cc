@@ -243,6 +243,36 @@ void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, std::span<const dou
   LaplacianImpl(m, field, [gamma_faces](int f) { return gamma_faces[f]; }, geo, grad);
 }
 
+void AddDivDev2Transpose(FvMatrix<Vector3>& m, std::span<const double> gamma_faces, const std::vector<Matrix3>& grad) {
+  const Mesh& mesh = m.mesh();
+  const int ni = mesh.n_internal_faces();
+  const auto owner = mesh.owner();
+  const auto neighbour = mesh.neighbour();
+  const auto w = mesh.weights();
+  const auto sf = mesh.face_areas();
+  auto face_flux = [&](const Matrix3& J, int f) -> Vector3 {
+    return gamma_faces[f] * (J.transpose() * sf[f] - (2.0 / 3.0) * J.trace() * sf[f]);
+  };
+  for (int f = 0; f < ni; ++f) {
+    const int P = owner[f], N = neighbour[f];
+    const Vector3 t = face_flux(w[f] * grad[P] + (1.0 - w[f]) * grad[N], f);
+    m.source[P] += t;
+    m.source[N] -= t;
+  }
+  for (int f = ni; f < mesh.n_faces(); ++f) m.source[owner[f]] += face_flux(grad[owner[f]], f);
+}
+
+void AddDivergence(FvMatrix<double>& m, std::span<const double> face_flux) {
+  const Mesh& mesh = m.mesh();
+  const int ni = mesh.n_internal_faces();
+  KELVIN_CHECK(static_cast<int>(face_flux.size()) == mesh.n_faces(), "one flux per face");
+  for (int f = 0; f < ni; ++f) {
+    m.source[mesh.owner()[f]] -= face_flux[f];
+    m.source[mesh.neighbour()[f]] += face_flux[f];
+  }
+  for (int f = ni; f < mesh.n_faces(); ++f) m.boundary_coeffs[f - ni] -= face_flux[f];
+}
+
 void AddImplicitSource(FvMatrix<double>& m, std::span<const double> coeff_per_volume) {
   const auto vol = m.mesh().cell_volumes();
   for (int c = 0; c < m.mesh().n_cells(); ++c) m.diag[c] += vol[c] * coeff_per_volume[c];
@@ -288,6 +318,60 @@ template <typename T>
 void AddSource(FvMatrix<T>& m, std::span<const T> per_volume) {
   const auto vol = m.mesh().cell_volumes();
   for (int c = 0; c < m.mesh().n_cells(); ++c) m.source[c] += vol[c] * per_volume[c];
+}
+
+bool NeedsReference(const CellField<double>& field) {
+  for (int p = 0; p < field.n_patches(); ++p) {
+    for (double g : field.bc(p).gradient_internal()) {
+      if (g != 0.0) return false;
+    }
+  }
+  return true;
+}
+
+void SetReference(std::vector<double>& diag, std::vector<double>& source, int cell, double value) {
+  source[cell] += diag[cell] * value;
+  diag[cell] += diag[cell];
+}
+
+void LaplacianFlux(const CellField<double>& field, std::span<const double> gamma_faces, const NonOrthGeometry& geo,
+                   std::vector<double>& flux) {
+  const Mesh& mesh = field.mesh();
+  const auto owner = mesh.owner();
+  const auto neighbour = mesh.neighbour();
+  const auto mag = mesh.face_area_magnitudes();
+  flux.resize(mesh.n_faces());
+  for (int f = 0; f < mesh.n_internal_faces(); ++f) {
+    const double a = gamma_faces[f] * mag[f] * geo.delta_coeffs[f];
+    flux[f] = a * (field[neighbour[f]] - field[owner[f]]);
+  }
+  for (int p = 0; p < field.n_patches(); ++p) {
+    const Patch& patch = mesh.patches()[p];
+    const auto& bc = field.bc(p);
+    for (int i = 0; i < patch.size; ++i) {
+      const int f = patch.start + i;
+      const double sn_grad = bc.gradient_internal()[i] * field[owner[f]] + bc.gradient_boundary()[i];
+      flux[f] = gamma_faces[f] * mag[f] * sn_grad;
+    }
+  }
+}
+
+void NonOrthogonalFlux(const Mesh& mesh, std::span<const double> gamma_faces, std::span<const Vector3> grad,
+                       const NonOrthGeometry& geo, std::vector<double>& flux) {
+  const int ni = mesh.n_internal_faces();
+  if (!geo.any_correction) {
+    flux.assign(ni, 0.0);
+    return;
+  }
+  flux.resize(ni);
+  const auto owner = mesh.owner();
+  const auto neighbour = mesh.neighbour();
+  const auto w = mesh.weights();
+  const auto mag = mesh.face_area_magnitudes();
+  for (int f = 0; f < ni; ++f) {
+    const Vector3 g = w[f] * grad[owner[f]] + (1.0 - w[f]) * grad[neighbour[f]];
+    flux[f] = gamma_faces[f] * mag[f] * g.dot(geo.correction[f]);
+  }
 }
 
 template class FvMatrix<double>;

@@ -8,7 +8,11 @@
 //       = source_P + sum_b boundary_coeffs_b
 //
 // The operators below add terms to a matrix so that an equation reads like
-// the maths: AddDdt, AddConvection, AddLaplacian, AddSource.
+// the maths: AddDdt, AddConvection, AddLaplacian, AddDivDev2Transpose,
+// AddDivergence, AddSource.
+// Free functions on spans (below the matrix operators) give the face fluxes
+// of a Laplacian, for the conservative flux of the pressure equation
+// (docs/formulation.md sections 4.4 and 10).
 #pragma once
 
 #include <span>
@@ -81,6 +85,18 @@ template <typename T>
 void AddLaplacian(FvMatrix<T>& m, const CellField<T>& field, std::span<const double> gamma_faces,
                   const NonOrthGeometry& geo, const std::vector<GradType<T>>* grad);
 
+// Explicit -div(gamma dev2(grad(U)^T)) on the left-hand side (the
+// transposed-gradient part of the viscous stress): with J(i, j) = du_i/dx_j
+// the face flux gamma_f (J_f^T - 2/3 tr(J_f) I) S_f goes to the source, J_f
+// interpolated linearly on internal faces and the owner value on boundary
+// faces. `gamma_faces` on every face, `grad` the cell gradient of U.
+void AddDivDev2Transpose(FvMatrix<Vector3>& m, std::span<const double> gamma_faces, const std::vector<Matrix3>& grad);
+
+// Explicit div(F) = sum_f F_f (F_f out of the owner) on the left-hand side:
+// internal faces go to the source, boundary faces to boundary_coeffs. With
+// AddLaplacian it makes the pressure equation laplacian(rAU, p) == div(F).
+void AddDivergence(FvMatrix<double>& m, std::span<const double> face_flux);
+
 // Implicit linear source: + coeff * phi per unit volume on the left-hand side
 // (coeff >= 0 keeps the matrix diagonally dominant: destruction terms).
 void AddImplicitSource(FvMatrix<double>& m, std::span<const double> coeff_per_volume);
@@ -93,6 +109,29 @@ void SetCellValues(FvMatrix<double>& m, std::span<const int> cells, std::span<co
 // Explicit source per unit volume (moved to the right-hand side times V).
 template <typename T>
 void AddSource(FvMatrix<T>& m, std::span<const T> per_volume);
+
+// A system that no boundary condition ties to a value (gradient_internal
+// zero on every face of `field`) has the constants as null space.
+bool NeedsReference(const CellField<double>& field);
+
+// Fixes the level of such a system in `cell` (OpenFOAM's setReference):
+// source_c += diag_c value, diag_c doubles. Applied to the assembled system,
+// after ComponentSystem has folded in the boundary parts.
+void SetReference(std::vector<double>& diag, std::vector<double>& source, int cell, double value);
+
+// Face fluxes of a corrected Laplacian, gamma_f |S_f| snGrad(phi)_f with
+// snGrad = dc_f (phi_N - phi_P) + k_f . grad(phi)_f on internal faces, split
+// as the matrix splits it:
+//   LaplacianFlux: the implicit part, gamma_f |S_f| dc_f (phi_N - phi_P) on
+//     internal faces and gamma_f |S_f| (gi phi_P + gb) from the conditions
+//     on boundary faces (every face);
+//   NonOrthogonalFlux: the explicit part gamma_f |S_f| k_f . grad(phi)_f with
+//     the linearly interpolated cell gradient (internal faces; zeros when
+//     the mesh is orthogonal).
+void LaplacianFlux(const CellField<double>& field, std::span<const double> gamma_faces, const NonOrthGeometry& geo,
+                   std::vector<double>& flux);
+void NonOrthogonalFlux(const Mesh& mesh, std::span<const double> gamma_faces, std::span<const Vector3> grad,
+                       const NonOrthGeometry& geo, std::vector<double>& flux);
 
 // Non-orthogonal correction vectors k_f = n_f - d_f / (n_f . d_f) and the
 // matching delta coefficients 1 / (n_f . d_f), as OpenFOAM's "corrected".

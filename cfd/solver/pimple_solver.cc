@@ -42,6 +42,7 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
       grad_(mesh, schemes.gradient),
       non_orth_(mesh),
       UEqn_(mesh),
+      pEqn_(mesh),
       system_(mesh) {
   physics_.Validate();
   schemes_.Validate();
@@ -137,26 +138,11 @@ void PimpleSolver::AssembleMomentum(double dt, std::span<const double> flux_rel)
   AddDdt(UEqn_, *U_, dt, schemes_.time);
   grad_.Compute(std::span<const Vector3>(U_->values()), std::span<const Vector3>(U_->boundary()), grad_U_);
   AddConvection(UEqn_, *U_, flux_rel, schemes_.convection, grad_U_);
-  if (!turbulence_) {
-    AddLaplacian(UEqn_, *U_, physics_.nu, non_orth_, non_orth_correction_ ? &grad_U_ : nullptr);
+  // div(dev(R_eff)): the turbulence model's, or the laminar one.
+  if (turbulence_) {
+    turbulence_->AddDivDevReff(UEqn_, *U_, grad_U_, non_orth_, non_orth_correction_);
   } else {
-    const std::vector<double>& nu_eff = turbulence_->nu_eff_faces();
-    AddLaplacian(UEqn_, *U_, std::span<const double>(nu_eff), non_orth_, non_orth_correction_ ? &grad_U_ : nullptr);
-    // div(nu_eff dev2(grad(U)^T)): with J(i, j) = du_i/dx_j the face flux of
-    // the transposed gradient is (J^T - 2/3 tr(J) I) S_f.
-    const int ni = mesh_.n_internal_faces();
-    const auto w = mesh_.weights();
-    const auto sf = mesh_.face_areas();
-    auto transposed = [&](const Matrix3& J, int f) -> Vector3 {
-      return nu_eff[f] * (J.transpose() * sf[f] - (2.0 / 3.0) * J.trace() * sf[f]);
-    };
-    for (int f = 0; f < ni; ++f) {
-      const int P = mesh_.owner()[f], N = mesh_.neighbour()[f];
-      const Vector3 t = transposed(w[f] * grad_U_[P] + (1.0 - w[f]) * grad_U_[N], f);
-      UEqn_.source[P] += t;
-      UEqn_.source[N] -= t;
-    }
-    for (int f = ni; f < mesh_.n_faces(); ++f) UEqn_.source[mesh_.owner()[f]] += transposed(grad_U_[mesh_.owner()[f]], f);
+    AddLaminarDivDevReff(UEqn_, *U_, physics_.nu, grad_U_, non_orth_, non_orth_correction_);
   }
   if (physics_.source) {
     source_.resize(mesh_.n_cells());
@@ -199,13 +185,6 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
                                      const std::vector<Vector3>& U_prev, const std::vector<double>& phi_prev,
                                      StepSummary& summary, bool first_pressure_solve) {
   const int nc = mesh_.n_cells();
-  const int ni = mesh_.n_internal_faces();
-  const int nf = mesh_.n_faces();
-  const auto owner = mesh_.owner();
-  const auto neighbour = mesh_.neighbour();
-  const auto w = mesh_.weights();
-  const auto sf = mesh_.face_areas();
-  const auto mag = mesh_.face_area_magnitudes();
 
   // rAU = 1/A, HbyA = H/A.
   const std::vector<double> A = UEqn_.A();
@@ -214,8 +193,52 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
   std::vector<Vector3> HbyA = UEqn_.H(std::span<const Vector3>(U_->values()));
   for (int c = 0; c < nc; ++c) HbyA[c] *= rAU[c];
 
-  // Rhie-Chow flux of HbyA with the transient and relaxation-consistent terms.
-  std::vector<double> phi_HbyA(nf), rAUf(nf);
+  const bool backward = schemes_.time == TimeScheme::kBackward && U_->n_old() >= 2 && phi_old_.size() >= 2;
+  std::vector<double> rAUf, phi_HbyA;
+  FluxHbyA(dt, backward, alpha_U, U_prev, phi_prev, rAU, HbyA, rAUf, phi_HbyA);
+
+  // Conditions with their own unknowns (the free surface) turn the predicted
+  // boundary flux into implicit pressure coefficients.
+  const PressureCoupling coupling{dt, backward, rAUf, phi_HbyA};
+  for (int p = 0; p < p_->n_patches(); ++p) {
+    p_->bc(p).PreparePressureSolve(BcContext{mesh_, mesh_.patches()[p], time_, phi_}, coupling);
+  }
+
+  std::vector<double> p_before(p_->values());
+  SolvePressure(rAUf, phi_HbyA, final_corrector, first_pressure_solve, summary);
+  // Pressure relaxation for the momentum correction (the flux keeps the
+  // unrelaxed pressure, as in OpenFOAM).
+  if (alpha_p < 1.0) {
+    for (int c = 0; c < nc; ++c) (*p_)[c] = p_before[c] + alpha_p * ((*p_)[c] - p_before[c]);
+    p_->CorrectBoundary(time_, RelativeFlux());
+  }
+  // Let boundary conditions with their own unknowns see the corrected flux.
+  for (int p = 0; p < p_->n_patches(); ++p) {
+    BcContext ctx{mesh_, mesh_.patches()[p], time_, phi_};
+    p_->bc(p).CorrectAfterFlux(ctx, phi_);
+  }
+  grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
+  for (int c = 0; c < nc; ++c) {
+    (*U_)[c] = HbyA[c] - rAU[c] * grad_p_[c];
+    for (int k = 0; k < 3; ++k) {
+      if (!solve_component_[k]) (*U_)[c][k] = 0.0;
+    }
+  }
+  U_->CorrectBoundary(time_, RelativeFlux());
+}
+
+void PimpleSolver::FluxHbyA(double dt, bool backward, double alpha_U, const std::vector<Vector3>& U_prev,
+                            const std::vector<double>& phi_prev, const std::vector<double>& rAU,
+                            const std::vector<Vector3>& HbyA, std::vector<double>& rAUf,
+                            std::vector<double>& phi_HbyA) {
+  const int ni = mesh_.n_internal_faces();
+  const int nf = mesh_.n_faces();
+  const auto owner = mesh_.owner();
+  const auto neighbour = mesh_.neighbour();
+  const auto w = mesh_.weights();
+  const auto sf = mesh_.face_areas();
+  phi_HbyA.resize(nf);
+  rAUf.resize(nf);
   std::vector<Vector3> HbyA_boundary(nf - ni);
   for (int p = 0; p < U_->n_patches(); ++p) {
     const Patch& patch = mesh_.patches()[p];
@@ -238,7 +261,6 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
     if (skew) out += (w[f] * g[P] + (1.0 - w[f]) * g[N]) * skew_vec[f];
     return out;
   };
-  const bool backward = schemes_.time == TimeScheme::kBackward && U_->n_old() >= 2 && phi_old_.size() >= 2;
   for (int f = 0; f < ni; ++f) {
     const int P = owner[f], N = neighbour[f];
     rAUf[f] = w[f] * rAU[P] + (1.0 - w[f]) * rAU[N];
@@ -259,60 +281,38 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
       phi_HbyA[f] += (1.0 - alpha_U) * (phi_prev[f] - u_prev.dot(sf[f]));
     }
   }
+}
 
-  // Conditions with their own unknowns (the free surface) turn the predicted
-  // boundary flux into implicit pressure coefficients.
-  const PressureCoupling coupling{dt, backward, rAUf, phi_HbyA};
-  for (int p = 0; p < p_->n_patches(); ++p) {
-    p_->bc(p).PreparePressureSolve(BcContext{mesh_, mesh_.patches()[p], time_, phi_}, coupling);
+void PimpleSolver::SolvePressure(std::span<const double> rAUf, std::span<const double> phi_HbyA,
+                                 bool final_corrector, bool first_pressure_solve, StepSummary& summary) {
+  const int ni = mesh_.n_internal_faces();
+  // Without a boundary that fixes the level, the reference cell fixes it.
+  const bool needs_reference = NeedsReference(*p_);
+  auto& [face_corr, known_flux, diag, rhs, laplacian_flux] = pressure_scratch_;
+  // The flux known before the solve: phiHbyA, less the non-orthogonal part
+  // of the Laplacian on corrected meshes.
+  std::span<const double> known = phi_HbyA;
+  if (non_orth_correction_) {
+    known_flux.assign(phi_HbyA.begin(), phi_HbyA.end());
+    known = known_flux;
   }
-
-  // Does any boundary fix the pressure level?
-  bool fixed_level = false;
-  for (int p = 0; p < p_->n_patches(); ++p) {
-    for (double g : p_->bc(p).gradient_internal()) fixed_level = fixed_level || g != 0.0;
-  }
-
-  std::vector<double> diag(nc), off(ni), rhs(nc), face_corr(ni, 0.0);
-  std::vector<double> p_before(p_->values());
   for (int non_orth = 0; non_orth <= pimple_.n_non_orthogonal; ++non_orth) {
     const bool last_non_orth = non_orth == pimple_.n_non_orthogonal;
-    std::fill(diag.begin(), diag.end(), 0.0);
-    for (int c = 0; c < nc; ++c) rhs[c] = 0.0;
     if (non_orth_correction_) {
       grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
+      NonOrthogonalFlux(mesh_, rAUf, grad_p_, non_orth_, face_corr);
+      for (int f = 0; f < ni; ++f) known_flux[f] = phi_HbyA[f] - face_corr[f];
     }
-    for (int f = 0; f < ni; ++f) {
-      const int P = owner[f], N = neighbour[f];
-      const double a = rAUf[f] * mag[f] * non_orth_.delta_coeffs[f];
-      diag[P] += a;
-      diag[N] += a;
-      off[f] = -a;
-      if (non_orth_correction_) {
-        const Vector3 g = w[f] * grad_p_[P] + (1.0 - w[f]) * grad_p_[N];
-        face_corr[f] = rAUf[f] * mag[f] * g.dot(non_orth_.correction[f]);
-      }
-      // Continuity: sum_out (phiHbyA - a (pN - pP) - corr) = 0.
-      const double known = phi_HbyA[f] - face_corr[f];
-      rhs[P] -= known;
-      rhs[N] += known;
-    }
-    for (int p = 0; p < p_->n_patches(); ++p) {
-      const Patch& patch = mesh_.patches()[p];
-      const auto& bc = p_->bc(p);
-      for (int i = 0; i < patch.size; ++i) {
-        const int f = patch.start + i;
-        const double a = rAUf[f] * mag[f];
-        diag[owner[f]] -= a * bc.gradient_internal()[i];
-        rhs[owner[f]] += a * bc.gradient_boundary()[i] - phi_HbyA[f];
-      }
-    }
-    if (!fixed_level) {
-      const int r = pimple_.p_ref_cell;
-      rhs[r] += diag[r] * pimple_.p_ref_value;
-      diag[r] += diag[r];
-    }
-    system_.Fill(diag, off, off);
+    // Continuity of F = phiHbyA - rAU |S| snGrad(p): laplacian(rAU, p) ==
+    // div(phiHbyA), with the non-orthogonal part of snGrad explicit (it
+    // joins phiHbyA in the known flux):
+    //   -sum_f rAU_f |S_f| dc_f (p_N - p_P) = -sum_f (phiHbyA_f - rAU_f |S_f| k_f . grad(p)_f)
+    pEqn_.Reset();
+    AddLaplacian(pEqn_, *p_, rAUf, non_orth_, nullptr);
+    AddDivergence(pEqn_, known);
+    pEqn_.ComponentSystem(0, diag, rhs);
+    if (needs_reference) SetReference(diag, rhs, pimple_.p_ref_cell, pimple_.p_ref_value);
+    system_.Fill(diag, pEqn_.upper, pEqn_.lower);
     const bool final_solve = final_corrector && last_non_orth;
     pressure_solver_->SetRelativeTolerance(final_solve ? pimple_.pressure_final_relative_tolerance
                                                        : pimple_.pressure_solver.relative_tolerance);
@@ -321,42 +321,13 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
     if (first_pressure_solve && non_orth == 0) summary.initial_residual_p = s.initial_residual;
     if (!std::isfinite(s.final_relative_residual)) summary.finite = false;
     p_->CorrectBoundary(time_, RelativeFlux());
-    if (last_non_orth) {
-      // Conservative flux from the same discrete operator.
-      for (int f = 0; f < ni; ++f) {
-        const double a = rAUf[f] * mag[f] * non_orth_.delta_coeffs[f];
-        phi_[f] = phi_HbyA[f] - a * ((*p_)[neighbour[f]] - (*p_)[owner[f]]) - face_corr[f];
-      }
-      for (int p = 0; p < p_->n_patches(); ++p) {
-        const Patch& patch = mesh_.patches()[p];
-        const auto& bc = p_->bc(p);
-        for (int i = 0; i < patch.size; ++i) {
-          const int f = patch.start + i;
-          const double sn_grad = bc.gradient_internal()[i] * (*p_)[owner[f]] + bc.gradient_boundary()[i];
-          phi_[f] = phi_HbyA[f] - rAUf[f] * mag[f] * sn_grad;
-        }
-      }
-    }
   }
-  // Pressure relaxation for the momentum correction (the flux keeps the
-  // unrelaxed pressure, as in OpenFOAM).
-  if (alpha_p < 1.0) {
-    for (int c = 0; c < nc; ++c) (*p_)[c] = p_before[c] + alpha_p * ((*p_)[c] - p_before[c]);
-    p_->CorrectBoundary(time_, RelativeFlux());
+  // Conservative flux from the same discrete operator and the last pressure.
+  LaplacianFlux(*p_, rAUf, non_orth_, laplacian_flux);
+  for (int f = 0; f < mesh_.n_faces(); ++f) phi_[f] = phi_HbyA[f] - laplacian_flux[f];
+  if (non_orth_correction_) {
+    for (int f = 0; f < ni; ++f) phi_[f] -= face_corr[f];
   }
-  // Let boundary conditions with their own unknowns see the corrected flux.
-  for (int p = 0; p < p_->n_patches(); ++p) {
-    BcContext ctx{mesh_, mesh_.patches()[p], time_, phi_};
-    p_->bc(p).CorrectAfterFlux(ctx, phi_);
-  }
-  grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
-  for (int c = 0; c < nc; ++c) {
-    (*U_)[c] = HbyA[c] - rAU[c] * grad_p_[c];
-    for (int k = 0; k < 3; ++k) {
-      if (!solve_component_[k]) (*U_)[c][k] = 0.0;
-    }
-  }
-  U_->CorrectBoundary(time_, RelativeFlux());
 }
 
 double PimpleSolver::ContinuityError(double* global) const {

@@ -1,7 +1,9 @@
 // Incompressible PIMPLE solver on collocated polyhedral cells (see
 // docs/formulation.md section 4). One time step:
 //   outer correctors (with under-relaxation and residual control)
-//     momentum predictor: ddt(U) + div(F - F_mesh, U) - div(nu grad U) = -grad p + s
+//     momentum predictor: ddt(U) + div(F - F_mesh, U) + div(dev(R_eff)) = -grad p + s,
+//       div(dev(R_eff)) from the turbulence model (AddDivDevReff), or
+//       -div(nu grad U) when laminar
 //     PISO correctors: Rhie-Chow flux of HbyA with the transient and
 //       relaxation-consistent terms; pressure equation with non-orthogonal
 //       correctors (CG + BoomerAMG); conservative flux update; U correction.
@@ -99,10 +101,11 @@ class PimpleSolver {
   const std::vector<double>& flux() const { return phi_; }
   // Mesh-motion hook: F_mesh on every face (m^3/s).
   void SetMeshFlux(std::vector<double> mesh_flux);
-  // RANS closure (null: laminar). The momentum equation then uses the
-  // model's face viscosities nu + nu_t (with the wall-function values on
-  // walls) and the explicit div(nu_eff dev2(grad(U)^T)) term; the model is
-  // corrected once per time step after the final outer iteration.
+  // RANS closure (null: laminar). The momentum equation then takes its
+  // stress term from the model (TurbulenceModel::AddDivDevReff: the face
+  // viscosities nu + nu_t, with the wall-function values on walls, and the
+  // explicit div(nu_eff dev2(grad(U)^T)) term); the model is corrected once
+  // per time step after the final outer iteration.
   void SetTurbulence(std::unique_ptr<TurbulenceModel> model);
   TurbulenceModel* turbulence() { return turbulence_.get(); }
   const TurbulenceModel* turbulence() const { return turbulence_.get(); }
@@ -154,6 +157,16 @@ class PimpleSolver {
   void PressureCorrector(double dt, bool final_corrector, double alpha_U, double alpha_p,
                          const std::vector<Vector3>& U_prev, const std::vector<double>& phi_prev,
                          StepSummary& summary, bool first_pressure_solve);
+  // Rhie-Chow flux of HbyA on every face with the transient and the
+  // relaxation-consistent terms, and rAU on the faces.
+  void FluxHbyA(double dt, bool backward, double alpha_U, const std::vector<Vector3>& U_prev,
+                const std::vector<double>& phi_prev, const std::vector<double>& rAU, const std::vector<Vector3>& HbyA,
+                std::vector<double>& rAUf, std::vector<double>& phi_HbyA);
+  // The pressure equation laplacian(rAU, p) == div(phiHbyA), solved
+  // 1 + n_non_orthogonal times; leaves the conservative flux
+  // F = phiHbyA - rAU |S| snGrad(p) of the last solve in phi_.
+  void SolvePressure(std::span<const double> rAUf, std::span<const double> phi_HbyA, bool final_corrector,
+                     bool first_pressure_solve, StepSummary& summary);
   // F - F_mesh on every face (refreshed on each call).
   std::span<const double> RelativeFlux();
   double ContinuityError(double* global) const;
@@ -179,6 +192,12 @@ class PimpleSolver {
   Gradient grad_;
   NonOrthGeometry non_orth_;
   FvMatrix<Vector3> UEqn_;
+  FvMatrix<double> pEqn_;
+  // Work arrays of SolvePressure, kept across correctors.
+  struct PressureScratch {
+    std::vector<double> face_corr, known_flux, diag, rhs, laplacian_flux;
+  };
+  PressureScratch pressure_scratch_;
   // One matrix with the mesh sparsity, refilled for each momentum component
   // and for the pressure (the AMG solver keeps its own copy).
   SparseSystem system_;

@@ -44,16 +44,6 @@
 
 namespace kelvin::cfd {
 
-// What the model does on each patch (the case runner derives it from the
-// velocity condition).
-enum class TurbulencePatchRole {
-  kInflow,    // fixed k and omega from the inflow turbulence
-  kOutflow,   // inflow values where the flux enters, zero gradient where it leaves
-  kWall,      // wall functions / low-Re wall treatment
-  kSymmetry,  // zero gradient (slip walls, symmetry planes, the free surface)
-  kEmpty,     // front and back of 2D meshes
-};
-
 struct InflowTurbulence {
   double intensity = 0.01;        // I = sqrt(2k/3) / U_ref
   double viscosity_ratio = 5.0;   // nu_t / nu

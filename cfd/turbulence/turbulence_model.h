@@ -1,9 +1,11 @@
 // Interface between the PIMPLE solver and a RANS turbulence model
-// (architecture: the turbulenceCorrector stage). The solver asks for the
-// effective viscosity nu + nu_t on every face (on walls: the wall-function
-// value that carries the wall shear stress) and calls Correct() after the
-// pressure correctors of each time step with the current velocity, its
-// gradient and the relative face flux.
+// (architecture: the turbulenceCorrector stage). The model adds the stress
+// term div(dev(R_eff)) to the momentum equation (AddDivDevReff, from the
+// effective viscosity nu + nu_t on every face; on walls the wall-function
+// value that carries the wall shear stress), and the solver calls Correct()
+// after the pressure correctors of each time step with the current
+// velocity, its gradient and the relative face flux. Without a model the
+// solver uses AddLaminarDivDevReff (docs/formulation.md sections 4.2 and 8).
 #pragma once
 
 #include <span>
@@ -12,9 +14,50 @@
 #include <vector>
 
 #include "cfd/field/field.h"
+#include "cfd/fv/fv_matrix.h"
 #include "cfd/fv/gradient.h"
 
 namespace kelvin::cfd {
+
+// What a model does on each patch (TurbulencePatchRoles derives it from the
+// velocity and pressure conditions; docs/formulation.md section 8.1).
+enum class TurbulencePatchRole {
+  kInflow,    // fixed k and omega from the inflow turbulence
+  kOutflow,   // inflow values where the flux enters, zero gradient where it leaves
+  kWall,      // wall functions / low-Re wall treatment
+  kSymmetry,  // zero gradient (slip walls, symmetry planes, the free surface)
+  kEmpty,     // front and back of 2D meshes
+};
+
+// The turbulence role of a patch from the roles of its conditions, in this
+// order: an empty, inflow, wall or symmetry velocity condition gives kEmpty,
+// kInflow, kWall or kSymmetry; otherwise the free-surface pressure condition
+// gives kSymmetry and anything else (zero gradient, inletOutlet, farField
+// velocity) kOutflow.
+inline TurbulencePatchRole TurbulencePatchRoleOf(const BoundaryCondition<Vector3>& U,
+                                                 const BoundaryCondition<double>& p) {
+  switch (U.role()) {
+    case PatchRole::kEmpty:
+      return TurbulencePatchRole::kEmpty;
+    case PatchRole::kInflow:
+      return TurbulencePatchRole::kInflow;
+    case PatchRole::kWall:
+      return TurbulencePatchRole::kWall;
+    case PatchRole::kSymmetry:
+      return TurbulencePatchRole::kSymmetry;
+    default:
+      break;
+  }
+  return p.role() == PatchRole::kFreeSurface ? TurbulencePatchRole::kSymmetry : TurbulencePatchRole::kOutflow;
+}
+
+// One role per mesh patch, from the conditions of U and p.
+inline std::vector<TurbulencePatchRole> TurbulencePatchRoles(const VectorField& U, const ScalarField& p) {
+  KELVIN_CHECK(U.n_patches() == p.n_patches(), "U and p on the same patches");
+  std::vector<TurbulencePatchRole> roles;
+  for (int k = 0; k < U.n_patches(); ++k) roles.push_back(TurbulencePatchRoleOf(U.bc(k), p.bc(k)));
+  return roles;
+}
 
 struct TurbulenceInputs {
   const VectorField& U;
@@ -61,6 +104,19 @@ class TurbulenceModel {
   virtual void RefreshGeometry() = 0;
   // nu + nu_t on every face (m^2/s).
   virtual const std::vector<double>& nu_eff_faces() const = 0;
+  // div(dev(R_eff)) of the momentum equation on its left-hand side
+  // (OpenFOAM's divDevReff(U); docs/formulation.md section 4.2), with
+  // nu_eff = nu_eff_faces():
+  //   -div(nu_eff grad(U))           implicit; its non-orthogonal part
+  //                                  explicit from grad_U when asked
+  //   -div(nu_eff dev2(grad(U)^T))   explicit from grad_U
+  // grad_U: J(i, j) = du_i / dx_j per cell.
+  virtual void AddDivDevReff(FvMatrix<Vector3>& UEqn, const VectorField& U, const std::vector<Matrix3>& grad_U,
+                             const NonOrthGeometry& geo, bool non_orthogonal_correction) const {
+    const std::span<const double> nu_eff(nu_eff_faces());
+    AddLaplacian(UEqn, U, nu_eff, geo, non_orthogonal_correction ? &grad_U : nullptr);
+    AddDivDev2Transpose(UEqn, nu_eff, grad_U);
+  }
   // Turbulent viscosity per cell (m^2/s).
   virtual const std::vector<double>& nu_t() const = 0;
   // Kinematic wall shear stress vector per boundary face (index face -
@@ -75,5 +131,15 @@ class TurbulenceModel {
   virtual std::vector<std::pair<std::string, std::vector<double>>> State() const = 0;
   virtual void SetState(const std::vector<std::pair<std::string, std::vector<double>>>& state) = 0;
 };
+
+// The laminar div(dev(R_eff)) with the constant viscosity nu (m^2/s), used
+// when no turbulence model is set: -div(nu grad(U)) only. The explicit
+// -div(nu dev2(grad(U)^T)) part is omitted, as kelvin always has for laminar
+// flow: with constant nu it is -nu grad(div U) / 3, zero for a solenoidal U.
+inline void AddLaminarDivDevReff(FvMatrix<Vector3>& UEqn, const VectorField& U, double nu,
+                                 const std::vector<Matrix3>& grad_U, const NonOrthGeometry& geo,
+                                 bool non_orthogonal_correction) {
+  AddLaplacian(UEqn, U, nu, geo, non_orthogonal_correction ? &grad_U : nullptr);
+}
 
 }  // namespace kelvin::cfd

@@ -158,12 +158,10 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
   const Vector3 U_inf(U, 0, 0);
   std::vector<std::unique_ptr<BoundaryCondition<Vector3>>> ub;
   std::vector<std::unique_ptr<BoundaryCondition<double>>> pb;
-  std::vector<TurbulencePatchRole> roles;
   for (const Patch& patch : mesh.patches()) {
     if (patch.name == "inlet") {
       ub.push_back(std::make_unique<FixedValue<Vector3>>(U_inf));
       pb.push_back(std::make_unique<ZeroGradient<double>>());
-      roles.push_back(TurbulencePatchRole::kInflow);
     } else if (patch.name == "outlet" || patch.name == "top") {
       if (patch.name == "outlet") {
         ub.push_back(std::make_unique<ZeroGradient<Vector3>>());
@@ -171,24 +169,21 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
         ub.push_back(std::make_unique<InletOutlet<Vector3>>(U_inf));
       }
       pb.push_back(std::make_unique<FixedValue<double>>(0.0));
-      roles.push_back(TurbulencePatchRole::kOutflow);
     } else if (patch.name == "runup") {
       ub.push_back(std::make_unique<Slip>());
       pb.push_back(std::make_unique<ZeroGradient<double>>());
-      roles.push_back(TurbulencePatchRole::kSymmetry);
     } else if (patch.name == "plate") {
-      ub.push_back(std::make_unique<FixedValue<Vector3>>(Vector3(0, 0, 0)));
+      ub.push_back(std::make_unique<FixedValue<Vector3>>(Vector3(0, 0, 0), PatchRole::kWall));
       pb.push_back(std::make_unique<ZeroGradient<double>>());
-      roles.push_back(TurbulencePatchRole::kWall);
     } else {
       ub.push_back(std::make_unique<Empty<Vector3>>());
       pb.push_back(std::make_unique<Empty<double>>());
-      roles.push_back(TurbulencePatchRole::kEmpty);
     }
   }
   auto Uf = std::make_unique<VectorField>("U", mesh, std::move(ub));
   for (auto& v : Uf->values()) v = U_inf;
   auto pf = std::make_unique<ScalarField>("p", mesh, std::move(pb));
+  const std::vector<TurbulencePatchRole> roles = TurbulencePatchRoles(*Uf, *pf);
   PhysicsOptions physics;
   physics.nu = nu;
   SchemeOptions schemes;

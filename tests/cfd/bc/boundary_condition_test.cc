@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include "cfd/bc/outlet_inlet.h"
+#include "cfd/freesurface/linearized_free_surface.h"
 #include "cfd/mesh/box_mesh.h"
+#include "cfd/turbulence/turbulence_model.h"
 
 namespace kelvin::cfd {
 namespace {
@@ -113,6 +116,73 @@ TEST_F(BcTest, MixedInterpolatesBetweenDirichletAndNeumann) {
   bc.fraction()[0] = 1.0;
   bc.Update({mesh_, p, 0.0, {}}, s_);
   EXPECT_DOUBLE_EQ(bc.value_internal()[0] * 5.0 + bc.value_boundary()[0], 2.0);
+}
+
+TEST(PatchRoles, EachConditionStatesItsRole) {
+  EXPECT_EQ(FixedValue<Vector3>(Vector3(1, 0, 0)).role(), PatchRole::kInflow);
+  EXPECT_EQ(FixedValue<Vector3>(Vector3(0, 0, 0), PatchRole::kWall).role(), PatchRole::kWall);
+  EXPECT_EQ(FixedValue<double>(0.0).role(), PatchRole::kUnspecified);
+  EXPECT_EQ(MovingWall([](double) { return MovingWall::Motion{}; }).role(), PatchRole::kWall);
+  EXPECT_EQ(Slip().role(), PatchRole::kSymmetry);
+  EXPECT_EQ(Empty<Vector3>().role(), PatchRole::kEmpty);
+  EXPECT_EQ(Empty<double>().role(), PatchRole::kEmpty);
+  EXPECT_EQ(ZeroGradient<Vector3>().role(), PatchRole::kUnspecified);
+  EXPECT_EQ(InletOutlet<Vector3>(Vector3::Zero()).role(), PatchRole::kOutflow);
+  EXPECT_EQ(OutletInlet<double>(0.0).role(), PatchRole::kOutflow);
+  EXPECT_EQ(FarField<Vector3>(Vector3::Zero(), true, 0.1).role(), PatchRole::kOutflow);
+  EXPECT_EQ(Mixed<double>(0.0, 0.0, 0.5).role(), PatchRole::kUnspecified);
+}
+
+// The mapping the case loader used on the YAML type strings: empty ->
+// kEmpty, fixedValue -> kInflow, movingWall / movingWallVelocity / noSlip ->
+// kWall, slip or a linearizedFreeSurface pressure -> kSymmetry, else kOutflow.
+TEST(PatchRoles, TurbulenceRolesFollowTheTypedConditions) {
+  BoxMeshOptions o;
+  o.cells = {3, 3, 2};
+  o.min = Vector3(0, 0, -1);
+  o.max = Vector3(1, 1, 0);
+  const Mesh mesh = MakeBoxMesh(o);
+  const auto wall = [] { return std::make_unique<FixedValue<Vector3>>(Vector3(0, 0, 0), PatchRole::kWall); };
+  const auto moving = [] { return std::make_unique<MovingWall>([](double) { return MovingWall::Motion{}; }); };
+  struct Row {
+    std::string patch;
+    std::unique_ptr<BoundaryCondition<Vector3>> u;
+    std::unique_ptr<BoundaryCondition<double>> p;
+    TurbulencePatchRole expected;
+  };
+  std::vector<Row> rows;
+  rows.push_back({"xmin", std::make_unique<FixedValue<Vector3>>(Vector3(1, 0, 0)),
+                  std::make_unique<ZeroGradient<double>>(), TurbulencePatchRole::kInflow});
+  rows.push_back({"xmax", std::make_unique<InletOutlet<Vector3>>(Vector3::Zero()),
+                  std::make_unique<OutletInlet<double>>(0.0), TurbulencePatchRole::kOutflow});
+  rows.push_back({"ymin", wall(), std::make_unique<ZeroGradient<double>>(), TurbulencePatchRole::kWall});
+  rows.push_back({"ymax", std::make_unique<Slip>(), std::make_unique<ZeroGradient<double>>(),
+                  TurbulencePatchRole::kSymmetry});
+  rows.push_back({"zmin", moving(), std::make_unique<ZeroGradient<double>>(), TurbulencePatchRole::kWall});
+  rows.push_back({"zmax", std::make_unique<ZeroGradient<Vector3>>(),
+                  std::make_unique<LinearizedFreeSurface>(mesh, mesh.FindPatch("zmax"), LinearizedFreeSurfaceOptions{}),
+                  TurbulencePatchRole::kSymmetry});
+  std::vector<std::unique_ptr<BoundaryCondition<Vector3>>> ub(mesh.patches().size());
+  std::vector<std::unique_ptr<BoundaryCondition<double>>> pb(mesh.patches().size());
+  std::vector<TurbulencePatchRole> expected(mesh.patches().size());
+  for (Row& r : rows) {
+    const int k = mesh.FindPatch(r.patch);
+    ASSERT_GE(k, 0) << r.patch;
+    ub[k] = std::move(r.u);
+    pb[k] = std::move(r.p);
+    expected[k] = r.expected;
+  }
+  const VectorField U("U", mesh, std::move(ub));
+  const ScalarField p("p", mesh, std::move(pb));
+  EXPECT_EQ(TurbulencePatchRoles(U, p), expected);
+
+  // The pressure condition decides only where the velocity condition does
+  // not: zero gradient is an outflow, empty stays empty.
+  EXPECT_EQ(TurbulencePatchRoleOf(ZeroGradient<Vector3>(), FixedValue<double>(0.0)), TurbulencePatchRole::kOutflow);
+  EXPECT_EQ(TurbulencePatchRoleOf(Empty<Vector3>(), Empty<double>()), TurbulencePatchRole::kEmpty);
+  EXPECT_EQ(TurbulencePatchRoleOf(FarField<Vector3>(Vector3::Zero(), true, 0.1),
+                                  FarField<double>(0.0, false, 0.1)),
+            TurbulencePatchRole::kOutflow);
 }
 
 }  // namespace
