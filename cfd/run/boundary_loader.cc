@@ -115,7 +115,7 @@ std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n, 
   }
   if (type == "noSlip") {
     n.ExpectKeys({"type"});
-    return std::make_unique<FixedValue<Vector3>>(Vector3(0, 0, 0));
+    return std::make_unique<FixedValue<Vector3>>(Vector3(0, 0, 0), PatchRole::kWall);
   }
   if (type == "movingWall") {
     n.ExpectKeys({"type", "velocity", "angular_velocity", "centre"});

@@ -161,8 +161,7 @@ PimpleOptions LoadPimple(const ConfigNode& root) {
 }
 
 // `turbulence:` k-omega SST (or laminar) on the solver.
-void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, const std::vector<std::string>& u_types,
-                    PimpleSolver& solver) {
+void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, PimpleSolver& solver) {
   tn.ExpectKeys({"model", "inflow", "convection", "relax"});
   const std::string model = tn.Get<std::string>("model");
   if (model != "kOmegaSST" && model != "laminar") tn["model"].Fail("kOmegaSST or laminar");
@@ -181,24 +180,8 @@ void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, const std
                            {{"upwind", ConvectionScheme::kUpwind}, {"limited", ConvectionScheme::kLimited}});
     so.relax = tn.Get<double>("relax", so.relax);
     ValidateAt(tn, [&] { so.Validate(); });
-    // What each patch is to k and omega follows from its velocity
-    // condition: prescribed inflow, walls, outflow, zero-gradient planes.
-    std::vector<TurbulencePatchRole> roles;
-    for (int k = 0; k < static_cast<int>(mesh.patches().size()); ++k) {
-      const std::string& u_type = u_types[k];
-      const std::string p_type = solver.p().bc(k).type();
-      if (u_type == "empty") {
-        roles.push_back(TurbulencePatchRole::kEmpty);
-      } else if (u_type == "fixedValue") {
-        roles.push_back(TurbulencePatchRole::kInflow);
-      } else if (u_type == "movingWall" || u_type == "movingWallVelocity" || u_type == "noSlip") {
-        roles.push_back(TurbulencePatchRole::kWall);
-      } else if (u_type == "slip" || p_type == "linearizedFreeSurface") {
-        roles.push_back(TurbulencePatchRole::kSymmetry);
-      } else {
-        roles.push_back(TurbulencePatchRole::kOutflow);
-      }
-    }
+    // What each patch is to k and omega: the role its conditions state.
+    const std::vector<TurbulencePatchRole> roles = TurbulencePatchRoles(solver.U(), solver.p());
     bool any_wall = false;
     for (TurbulencePatchRole r : roles) any_wall = any_wall || r == TurbulencePatchRole::kWall;
     if (!any_wall) tn["model"].Fail("a case with at least one wall patch (U: noSlip or movingWall) for kOmegaSST");
@@ -207,12 +190,10 @@ void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, const std
 }
 
 // Velocity and pressure fields with a condition on every patch; every key
-// must be a patch of the mesh. `u_types`: the velocity condition types as
-// written (noSlip and fixedValue differ for turbulence).
+// must be a patch of the mesh.
 struct Fields {
   std::unique_ptr<VectorField> U;
   std::unique_ptr<ScalarField> p;
-  std::vector<std::string> u_types;
 };
 
 Fields LoadBoundary(const ConfigNode& b, const Mesh& mesh, const RigidMeshMotion* motion) {
@@ -223,7 +204,6 @@ Fields LoadBoundary(const ConfigNode& b, const Mesh& mesh, const RigidMeshMotion
   std::vector<std::unique_ptr<BoundaryCondition<double>>> p_bcs;
   Fields f;
   for (const Patch& p : mesh.patches()) {
-    f.u_types.push_back(b.Has(p.name) ? b[p.name]["U"].Get<std::string>("type") : "empty");
     if (!b.Has(p.name)) {
       if (p.kind == PatchKind::kEmpty) {
         u_bcs.push_back(std::make_unique<Empty<Vector3>>());
@@ -368,7 +348,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
                                               std::move(fields.p));
   });
   if (c.motion) c.motion->Attach(*c.solver);
-  if (root.Has("turbulence")) LoadTurbulence(root["turbulence"], mesh, s.nu, fields.u_types, *c.solver);
+  if (root.Has("turbulence")) LoadTurbulence(root["turbulence"], mesh, s.nu, *c.solver);
   c.free_surface = FindFreeSurface(*c.solver);
   if (s.time.steady && s.time.steady->window_is_flow_through) {
     s.time.steady->criterion.window = FlowThroughTime(mesh, s.reference);
