@@ -265,6 +265,10 @@ void CheckRunSections(const ConfigNode& root, const Case& c) {
       }
     }
   }
+  if (s.time.rigid_lid_windows > 0.0 && !c.free_surface) {
+    root["time"]["rigid_lid_windows"].Fail(
+        "0 on a case without a linearizedFreeSurface patch (a double body has no lid to release)");
+  }
   if (s.time.initial_velocity && s.reference.speed == 0.0) {
     root["time"]["initial_velocity"].Fail("a reference: {speed, direction} section (the initial velocity is speed * direction)");
   }

@@ -211,6 +211,8 @@ TEST(CaseRunner, BadSteadyAndResistanceSectionsAreErrors) {
                         "no eta: the case has no linearizedFreeSurface patch");
   ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {quantities: [drag], window: 0}, dt: "),
                         "force instead of drag, or a reference");
+  ExpectCaseConfigError(with("time: {dt: ", "time: {rigid_lid_windows: 1, " + steady.substr(7) + "}, dt: "),
+                        "a double body has no lid to release");
   std::string no_forces = with("time: {dt: ", steady + "}, dt: ");
   no_forces.replace(no_forces.find("forces: [ymax]"), 14, "forces: []");
   ExpectCaseConfigError(no_forces, "output.forces");
