@@ -38,7 +38,7 @@ void ResistanceMonitor::AfterStep(const PimpleSolver& solver, const StepRecord& 
     rwl = WaterlineForce(free_surface_->surface(), free_surface_->eta(), hull_, rho_, g_).dot(reference_.direction);
   }
   steady_ = record.steady;
-  last_faces_ = record.forces.Faces(hull_);
+  if (record.last) last_faces_ = record.forces.Faces(hull_);  // the report's hull faces
   rows_.push_back({solver.time(), rp + rf, rf, rp, rwl, steady_.force_change, steady_.eta_change});
 }
 
@@ -116,7 +116,7 @@ void WriteWaves(data::H5Writer& w, const LinearizedFreeSurface& fs, int hull, co
 
 std::string ResistanceMonitor::WriteSplit(data::H5Writer& w) const {
   const auto& last = rows_.back();
-  const double q = 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed;
+  const double q = DynamicForce();
   const double rt = last[1], rf = last[2], rp = last[3];
   Scalar(w, "speed", reference_.speed, "m/s", "inflow speed U");
   Scalar(w, "rho", rho_, "kg/m^3", "density");
@@ -161,7 +161,7 @@ std::string ResistanceMonitor::WriteWaveMaking(data::H5Writer& w) const {
   // The wave-making part by coefficients, C_W = C_P - C_P(double body), so
   // a double-body run at another speed of the same grid serves (C_P of the
   // double body changes only through the Reynolds number).
-  const double q = 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed;
+  const double q = DynamicForce();
   const double rp = rows_.back()[3];
   const data::H5Reader db(options_.double_body);
   const double cp_db = db.Read("C_P").at(0);
@@ -179,7 +179,7 @@ std::string ResistanceMonitor::WriteWaveMaking(data::H5Writer& w) const {
 }
 
 std::string ResistanceMonitor::Write(const std::filesystem::path& file, const PimpleSolver& solver) const {
-  KELVIN_CHECK(!rows_.empty(), "a recorded step before the report");
+  KELVIN_CHECK(!rows_.empty() && !last_faces_.pressure.empty(), "a recorded last step before the report");
   data::H5Writer w(file);
   std::string summary = WriteSplit(w);
   summary += WriteWaveMaking(w);
@@ -190,7 +190,7 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Pi
                "per step: time, R_T, R_F, R_P, R_WL, force change, eta change (NaN before a full window)");
   WriteHullFaces(w, solver.mesh(), hull_, last_faces_, reference_.direction);
   if (free_surface_) {
-    const double q = 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed;
+    const double q = DynamicForce();
     const double rwl = rows_.back()[4];
     Scalar(w, "R_WL", rwl, "N", "waterline-integral correction 0.5 rho g sum eta^2 n_x dl (not in R_T)");
     Scalar(w, "C_WL", rwl / q, "1", "R_WL / (0.5 rho S U^2)");

@@ -49,6 +49,8 @@ class ResistanceMonitor final : public Monitor {
   // part against the double body. Each returns its part of the summary.
   std::string WriteSplit(data::H5Writer& writer) const;
   std::string WriteWaveMaking(data::H5Writer& writer) const;
+  // 0.5 rho S U^2 (N): the scale of the coefficients.
+  double DynamicForce() const { return 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed; }
 
   ResistanceOptions options_;
   CaseReference reference_;
@@ -60,7 +62,7 @@ class ResistanceMonitor final : public Monitor {
   SteadyStatus steady_;
   double tolerance_;
   std::vector<std::array<double, 7>> rows_;
-  PatchFaceForces last_faces_;  // of the hull at the last step
+  PatchFaceForces last_faces_;  // of the hull at the last step (record.last)
 };
 
 }  // namespace kelvin::cfd

@@ -13,6 +13,12 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+double L2Norm(std::span<const double> a) {
+  double n2 = 0.0;
+  for (double x : a) n2 += x * x;
+  return std::sqrt(n2);
+}
+
 double L2Distance(std::span<const double> a, std::span<const double> b) {
   double d2 = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) d2 += (a[i] - b[i]) * (a[i] - b[i]);
@@ -62,7 +68,7 @@ void SteadyCriterion::Measure() {
     const double scale = std::abs(now.groups[g].scale);
     force_change_ = std::max(force_change_, scale > 0.0 ? df / scale : (df > 0.0 ? kInf : 0.0));
   }
-  const double eta_norm = L2Distance(now.eta, std::vector<double>(now.eta.size(), 0.0));
+  const double eta_norm = L2Norm(now.eta);
   double de = 0.0;
   for (const Sample& s : samples_) {
     KELVIN_CHECK(s.eta.size() == now.eta.size(), "the same eta field in every sample");

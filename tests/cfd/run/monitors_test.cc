@@ -104,7 +104,9 @@ TEST(ResistanceMonitor, SplitAndCoefficientsOfAGivenForceField) {
   steady.settled = true;
   steady.settled_step = 7;
   History history;
-  monitor.AfterStep(*c.solver, StepRecord{step, forces, steady}, history);
+  StepRecord record{step, forces, steady};
+  record.last = true;  // the report's hull faces are those of the last step
+  monitor.AfterStep(*c.solver, record, history);
   const std::vector<std::string> report = monitor.Finish(*c.solver);
   ASSERT_EQ(report.size(), 1u);
   EXPECT_NE(report[0].find("converged at step 7"), std::string::npos) << report[0];
@@ -118,6 +120,10 @@ TEST(ResistanceMonitor, SplitAndCoefficientsOfAGivenForceField) {
   EXPECT_NEAR(h.Read("Fn").at(0), 2.0 / std::sqrt(9.81 * 1.5), 1e-12);
   EXPECT_NEAR(h.Read("Re").at(0), 2.0 * 1.5 / 1.0e-2, 1e-9);
   EXPECT_EQ(h.Read("converged").at(0), 1.0);
+  const data::Series pf = h.Read("hull_faces/pressure_force");
+  ASSERT_EQ(pf.rows, static_cast<std::size_t>(n));
+  EXPECT_EQ(pf.at(0, 0), -1.0);
+  EXPECT_EQ(pf.at(0, 1), 0.3);
 }
 
 // A monitor asked for on a case that cannot provide it is one error naming the key.
