@@ -72,6 +72,11 @@ void PimpleSolver::SetMeshFlux(std::vector<double> mesh_flux) {
   mesh_flux_ = std::move(mesh_flux);
 }
 
+void PimpleSolver::SetCellSource(std::vector<Vector3> source) {
+  KELVIN_CHECK(source.empty() || static_cast<int>(source.size()) == mesh_.n_cells(), "a cell source on every cell");
+  cell_source_ = std::move(source);
+}
+
 void PimpleSolver::SetTurbulence(std::unique_ptr<TurbulenceModel> model) {
   turbulence_ = std::move(model);
   if (initialized_ && turbulence_) turbulence_->Initialize(*U_, RelativeFlux());
@@ -149,6 +154,7 @@ void PimpleSolver::AssembleMomentum(double dt, std::span<const double> flux_rel)
     for (int c = 0; c < mesh_.n_cells(); ++c) source_[c] = physics_.source(mesh_.cell_centres()[c], time_);
     AddSource(UEqn_, std::span<const Vector3>(source_));
   }
+  if (!cell_source_.empty()) AddSource(UEqn_, std::span<const Vector3>(cell_source_));
 }
 
 double PimpleSolver::SolveMomentum(const std::vector<Vector3>& grad_p, StepSummary& summary) {

@@ -126,6 +126,12 @@ class PimpleSolver {
   // the run driver: body motion, propeller and rudder forces).
   using OuterIterationHook = std::function<void(int outer)>;
   void SetOuterIterationHook(OuterIterationHook hook) { outer_hook_ = std::move(hook); }
+  // Momentum source per unit mass on each cell (m/s^2, earth axes), set by
+  // couplers between outer iterations (the propeller's and rudder's body
+  // forces) and added to physics.source; empty (the default) is none. It is
+  // not part of State: the coupler that sets it restores it on restart.
+  void SetCellSource(std::vector<Vector3> source);
+  const std::vector<Vector3>& cell_source() const { return cell_source_; }
   // Recomputes the geometry the solver caches (least-squares gradient
   // vectors, non-orthogonal and skewness corrections) after the mesh moved.
   void RefreshGeometry();
@@ -212,6 +218,7 @@ class PimpleSolver {
   std::vector<Vector3> skew_;  // internal faces, only with skew correction
   std::vector<Vector3> grad_p_;
   std::vector<Vector3> source_;
+  std::vector<Vector3> cell_source_;
   std::unique_ptr<TurbulenceModel> turbulence_;
   TurbulenceSummary turbulence_summary_;
 };
