@@ -89,6 +89,20 @@ void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solv
   w.Commit();
 }
 
+namespace {
+
+CheckpointScalars RunScalars(const data::H5Reader& r) {
+  CheckpointScalars scalars;
+  if (r.HasAttribute("/", "run_scalars")) {
+    for (const std::string& name : SplitNames(r.StringAttribute("/", "run_scalars"))) {
+      scalars[name] = r.NumberAttribute("/", "run_" + name);
+    }
+  }
+  return scalars;
+}
+
+}  // namespace
+
 CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver) {
   data::H5Reader r(path);
   const auto n_cells = static_cast<int>(r.NumberAttribute("/", "n_cells"));
@@ -123,13 +137,12 @@ CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver
   } catch (const DataFileError& e) {
     throw DataFileError(fmt::format("{}: {}", path.string(), e.what()));
   }
-  CheckpointScalars scalars;
-  if (r.HasAttribute("/", "run_scalars")) {
-    for (const std::string& name : SplitNames(r.StringAttribute("/", "run_scalars"))) {
-      scalars[name] = r.NumberAttribute("/", "run_" + name);
-    }
-  }
-  return scalars;
+  return RunScalars(r);
+}
+
+CheckpointScalars ReadCheckpointScalars(const std::filesystem::path& path) {
+  const data::H5Reader r(path);
+  return RunScalars(r);
 }
 
 }  // namespace kelvin::cfd

@@ -22,5 +22,8 @@ void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solv
 // Restores the state and returns the run scalars (none in checkpoints
 // written without them); a DataFileError if the file does not match the mesh.
 CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver);
+// The run scalars alone (a free body restores its pose before the solver
+// state places the mesh).
+CheckpointScalars ReadCheckpointScalars(const std::filesystem::path& path);
 
 }  // namespace kelvin::cfd

@@ -5,11 +5,17 @@
 namespace kelvin::cfd {
 
 RigidMeshMotion::RigidMeshMotion(Mesh& mesh, RigidMotion motion)
-    : mesh_(mesh), motion_(std::move(motion)) {
+    : RigidMeshMotion(mesh, std::make_shared<const RigidMotion>(std::move(motion))) {
+  prescribed_ = static_cast<const RigidMotion*>(body_.get());
+}
+
+RigidMeshMotion::RigidMeshMotion(Mesh& mesh, std::shared_ptr<const BodyKinematics> body)
+    : mesh_(mesh), body_(std::move(body)) {
+  KELVIN_CHECK(body_ != nullptr, "a body for the rigid mesh motion");
   KELVIN_CHECK(
       mesh.placement_rotation().isIdentity(0.0) && mesh.placement_translation().isZero(0.0),
       "a rigid mesh motion starts from the body-fixed geometry");
-  const Vector3& c = motion_.options().centre;
+  const Vector3& c = body_->centre();
   const auto points = mesh.points();
   body_face_areas_.assign(mesh.face_areas().begin(), mesh.face_areas().end());
   face_moment_.assign(mesh.n_faces(), Vector3::Zero());
@@ -47,17 +53,17 @@ void RigidMeshMotion::MeshFlux(const Pose& pose, std::vector<double>& mesh_flux)
 }
 
 void RigidMeshMotion::Apply(double t, std::vector<double>& mesh_flux) const {
-  const Pose pose = motion_.At(t);
-  mesh_.SetPlacement(pose.Rotation(), pose.Translation(motion_.options().centre));
+  const Pose pose = body_->At(t);
+  mesh_.SetPlacement(pose.Rotation(), pose.Translation(body_->centre()));
   MeshFlux(pose, mesh_flux);
 }
 
 Vector3 RigidMeshMotion::CentreAt(const Pose& pose) const {
-  return pose.Rotation() * motion_.options().centre + pose.Translation(motion_.options().centre);
+  return pose.Rotation() * body_->centre() + pose.Translation(body_->centre());
 }
 
 MovingWall::Motion RigidMeshMotion::WallMotion(double t) const {
-  const Pose pose = motion_.At(t);
+  const Pose pose = body_->At(t);
   MovingWall::Motion m;
   m.velocity = pose.Velocity();
   m.angular_velocity = pose.AngularVelocity();
@@ -66,7 +72,7 @@ MovingWall::Motion RigidMeshMotion::WallMotion(double t) const {
 }
 
 Vector3 RigidMeshMotion::PointVelocity(const Vector3& x, double t) const {
-  const Pose pose = motion_.At(t);
+  const Pose pose = body_->At(t);
   return pose.Velocity() + pose.AngularVelocity().cross(x - CentreAt(pose));
 }
 

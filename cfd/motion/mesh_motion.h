@@ -12,6 +12,7 @@
 // cell), so the space conservation law holds exactly with constant volumes.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "cfd/bc/boundary_condition.h"
@@ -24,8 +25,10 @@ namespace kelvin::cfd {
 class RigidMeshMotion {
  public:
   // `mesh` must still hold its body-fixed geometry (no placement yet); it is
-  // moved by Apply() and must outlive this object.
+  // moved by Apply() and must outlive this object. The body is a prescribed
+  // motion or a free body (cfd/motion/free_body.h).
   RigidMeshMotion(Mesh& mesh, RigidMotion motion);
+  RigidMeshMotion(Mesh& mesh, std::shared_ptr<const BodyKinematics> body);
 
   // Places the mesh at the pose of time t and writes F_mesh on every face.
   void Apply(double t, std::vector<double>& mesh_flux) const;
@@ -39,7 +42,9 @@ class RigidMeshMotion {
   // (z-up frame) at time t.
   Vector3 PointVelocity(const Vector3& x, double t) const;
 
-  const RigidMotion& motion() const { return motion_; }
+  const BodyKinematics& body() const { return *body_; }
+  // The prescribed motion, or null for a free body.
+  const RigidMotion* prescribed() const { return prescribed_; }
   const Mesh& mesh() const { return mesh_; }
   // Body-fixed first moments M_f of the face areas about the reference point.
   const std::vector<Vector3>& face_moments() const { return face_moment_; }
@@ -49,7 +54,8 @@ class RigidMeshMotion {
 
  private:
   Mesh& mesh_;
-  RigidMotion motion_;
+  std::shared_ptr<const BodyKinematics> body_;
+  const RigidMotion* prescribed_ = nullptr;
   std::vector<Vector3> body_face_areas_;
   std::vector<Vector3> face_moment_;
 };

@@ -88,7 +88,7 @@ MotionOptions LoadMotionOptions(const data::ConfigNode& node) {
       found = true;
     }
   }
-  if (!found) node["kind"].Fail(fmt::format("one of {}", fmt::join(kKindNames, ", ")));
+  if (!found) node["kind"].Fail(fmt::format("one of {}, or free (a free-running body)", fmt::join(kKindNames, ", ")));
   // Only the keys of this kind are accepted, so a misplaced amplitude is an error.
   std::vector<std::string> keys = {"kind", "speed", "ramp_time", "centre"};
   if (UsesDrift(o.kind)) keys.push_back("drift_angle_deg");
@@ -150,26 +150,27 @@ RigidMotion::RigidMotion(MotionOptions options) : options_(std::move(options)) {
   options_.Validate();
 }
 
-double RigidMotion::Ramp(double t) const {
-  const double T = options_.ramp_time;
-  if (T <= 0.0 || t >= T) return 1.0;
+double StartupFactor(double t, double t_ramp) {
+  if (t_ramp <= 0.0 || t >= t_ramp) return 1.0;
   if (t <= 0.0) return 0.0;
-  return 0.5 * (1.0 - std::cos(kPi * t / T));
+  return 0.5 * (1.0 - std::cos(kPi * t / t_ramp));
 }
 
-double RigidMotion::RampRate(double t) const {
-  const double T = options_.ramp_time;
-  if (T <= 0.0 || t >= T || t <= 0.0) return 0.0;
-  return 0.5 * kPi / T * std::sin(kPi * t / T);
+double StartupFactorRate(double t, double t_ramp) {
+  if (t_ramp <= 0.0 || t >= t_ramp || t <= 0.0) return 0.0;
+  return 0.5 * kPi / t_ramp * std::sin(kPi * t / t_ramp);
 }
 
-double RigidMotion::RampIntegral(double t) const {
-  const double T = options_.ramp_time;
+double StartupFactorIntegral(double t, double t_ramp) {
   if (t <= 0.0) return 0.0;
-  if (T <= 0.0) return t;
-  if (t >= T) return t - 0.5 * T;
-  return 0.5 * t - 0.5 * T / kPi * std::sin(kPi * t / T);
+  if (t_ramp <= 0.0) return t;
+  if (t >= t_ramp) return t - 0.5 * t_ramp;
+  return 0.5 * t - 0.5 * t_ramp / kPi * std::sin(kPi * t / t_ramp);
 }
+
+double RigidMotion::Ramp(double t) const { return StartupFactor(t, options_.ramp_time); }
+double RigidMotion::RampRate(double t) const { return StartupFactorRate(t, options_.ramp_time); }
+double RigidMotion::RampIntegral(double t) const { return StartupFactorIntegral(t, options_.ramp_time); }
 
 Pose RigidMotion::At(double t) const {
   const MotionOptions& o = options_;

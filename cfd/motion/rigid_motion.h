@@ -18,18 +18,23 @@
 // For t >= t_ramp every law is exactly the one of the captive schema, so the
 // identification (which discards t < t_ramp) sees the textbook motion.
 //
-// The CFD grid uses z up with y to port (cfd/grid), so Pose also gives the
-// placement of the body-fixed grid in the z-up earth frame:
-//   x_E = c + (x0, -y0, 0) + Rz(-psi) (xi - c),   c = reference point (grid axes).
+// Pose (cfd/motion/body_kinematics.h) also gives the placement of the grid.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 #include <string_view>
 
+#include "cfd/motion/body_kinematics.h"
 #include "data/schema/config.h"
 
 namespace kelvin::cfd {
+
+// The smooth start-up factor s(t) above, its rate ds/dt and its integral
+// from 0 (t_ramp = 0: s = 1 throughout).
+double StartupFactor(double t, double t_ramp);
+double StartupFactorRate(double t, double t_ramp);
+double StartupFactorIntegral(double t, double t_ramp);
 
 enum class PrescribedMotion { kStaticDrift, kPureSway, kPureYaw, kYawDrift, kCircularMotion };
 
@@ -73,27 +78,14 @@ struct MotionOptions {
 // Keys a kind does not use are an error naming them.
 MotionOptions LoadMotionOptions(const data::ConfigNode& node);
 
-// The state of the body at one time.
-struct Pose {
-  double x0 = 0.0, y0 = 0.0, psi = 0.0;  // earth position (m, starboard +) and heading (rad)
-  double dx0 = 0.0, dy0 = 0.0, r = 0.0;  // earth velocity (m/s) and yaw rate (rad/s)
-  // Body velocities of the reference point in ship axes (x forward, y
-  // starboard): u = dx0 cos psi + dy0 sin psi, v = -dx0 sin psi + dy0 cos psi.
-  double u() const;
-  double v() const;
-  // Placement of the grid in the z-up earth frame (see the file comment).
-  Eigen::Matrix3d Rotation() const;                                  // Rz(-psi)
-  Eigen::Vector3d Translation(const Eigen::Vector3d& centre) const;  // x_E = R xi + t
-  Eigen::Vector3d Velocity() const;                                  // (dx0, -dy0, 0)
-  Eigen::Vector3d AngularVelocity() const;                           // (0, 0, -r)
-};
-
-class RigidMotion {
+class RigidMotion : public BodyKinematics {
  public:
   explicit RigidMotion(MotionOptions options);  // validates
   const MotionOptions& options() const { return options_; }
   // Pose and rates at time t >= 0 (s), exact (no small-angle approximation).
-  Pose At(double t) const;
+  Pose At(double t) const override;
+  const Eigen::Vector3d& centre() const override { return options_.centre; }
+  double nominal_speed() const override { return options_.speed; }
 
  private:
   // Start-up factor s(t), its rate and its integral from 0.

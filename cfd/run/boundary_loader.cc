@@ -33,7 +33,7 @@ std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, 
     if (u_b.z() != 0.0) n["mesh_velocity"].Fail("an in-plane velocity [u, v, 0] (the free surface stays at z = 0)");
     o.mesh_velocity = [u_b](const Vector3&, double) { return u_b; };
   } else if (motion) {
-    u_b = Vector3(motion->motion().options().speed, 0.0, 0.0);
+    u_b = Vector3(motion->body().nominal_speed(), 0.0, 0.0);
     o.mesh_velocity = [motion](const Vector3& x, double t) { return motion->PointVelocity(x, t); };
   }
   using Advection = LinearizedFreeSurfaceOptions::Advection;

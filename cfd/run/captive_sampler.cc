@@ -14,8 +14,8 @@ void CaptiveSampler::AfterStep(const PimpleSolver& solver, const StepRecord& rec
   for (int k : hull_) faces.push_back(&record.forces.Faces(k));
   CaptiveSample s;
   s.time = solver.time();
-  s.pose = motion_.motion().At(s.time);
-  s.loads = SumHullLoads(solver.mesh(), hull_, faces, s.pose, motion_.motion().options().centre);
+  s.pose = motion_.body().At(s.time);
+  s.loads = SumHullLoads(solver.mesh(), hull_, faces, s.pose, motion_.body().centre());
   s.prime = scales_.ToPrime(s.loads.Total());
   samples_.push_back(s);
 }

@@ -320,12 +320,16 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   if (overrides.motion && root.Has("motion")) root["motion"].Fail("no motion: section (the campaign sets it)");
   if (overrides.motion) {
     c.motion = std::make_unique<RigidMeshMotion>(*c.mesh, RigidMotion(*overrides.motion));
+  } else if (root.Has("motion") && IsFreeMotion(root["motion"])) {
+    c.free_running = LoadFreeRunning(root["motion"], case_dir, LoadSchemes(root).time == TimeScheme::kBackward);
+    c.free_body = std::make_shared<FreeBody>(c.free_running->body);
+    c.motion = std::make_unique<RigidMeshMotion>(*c.mesh, std::shared_ptr<const BodyKinematics>(c.free_body));
   } else if (root.Has("motion")) {
     c.motion = std::make_unique<RigidMeshMotion>(*c.mesh, RigidMotion(LoadMotionOptions(root["motion"])));
   }
   if (overrides.dt > 0.0) s.time.dt = overrides.dt;
   // A harmonic motion with `periods` sets the end time.
-  const double motion_end = c.motion ? c.motion->motion().options().EndTime() : 0.0;
+  const double motion_end = c.motion && c.motion->prescribed() ? c.motion->prescribed()->options().EndTime() : 0.0;
   const ConfigNode t = root["time"];
   if (motion_end > 0.0 && t.Has("end")) t["end"].Fail("no end time: motion.periods sets it");
   if (overrides.end_time > 0.0) {
@@ -339,6 +343,15 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   c.force_patches = ResolvePatches(root["output"].Has("forces") ? root["output"]["forces"] : root["output"], mesh,
                                    s.output.force_patches);
   if (s.reference.area == 0.0) s.reference.area = PatchArea(mesh, c.force_patches);
+  if (c.free_running) {
+    const ConfigNode m = root["motion"];
+    if (c.free_running->hull_patches.empty()) {
+      if (c.force_patches.empty()) m.Fail("hull_patches, or output.forces naming the hull patches");
+      c.hull_patches = c.force_patches;
+    } else {
+      c.hull_patches = ResolvePatches(m["hull_patches"], mesh, c.free_running->hull_patches);
+    }
+  }
 
   PhysicsOptions physics;
   physics.nu = s.nu;

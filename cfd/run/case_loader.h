@@ -16,7 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "cfd/motion/free_body.h"
 #include "cfd/motion/mesh_motion.h"
+#include "cfd/run/free_running_loader.h"
 #include "cfd/run/time_control.h"
 #include "cfd/solver/pimple_solver.h"
 #include "data/schema/config.h"
@@ -75,8 +77,14 @@ CaseSettings ReadCaseSettings(const data::ConfigNode& root, const std::filesyste
 struct Case {
   CaseSettings settings;
   std::unique_ptr<Mesh> mesh;
-  // Prescribed rigid motion of the whole mesh (the `motion:` section), or null.
+  // Rigid motion of the whole mesh (the `motion:` section): prescribed, or
+  // of the free body; null without a motion.
   std::unique_ptr<RigidMeshMotion> motion;
+  // A free-running run (`motion: {kind: free}`): the body the mesh follows,
+  // its settings and the mesh indices of its hull patches.
+  std::shared_ptr<FreeBody> free_body;
+  std::optional<FreeRunningSettings> free_running;
+  std::vector<int> hull_patches;
   std::unique_ptr<PimpleSolver> solver;
   LinearizedFreeSurface* free_surface = nullptr;  // the pressure condition that owns eta, or null
   std::vector<int> force_patches;                 // mesh indices of output.forces

@@ -2,8 +2,12 @@
 // besides marching the solver, each behind the same hooks, so that a new one
 // is added without touching the driver.
 //
+//   RestoreScalars     on a restart, with the checkpoint's scalars, before the
+//                      solver state is read (a free body places the mesh)
 //   Start              before the time loop (after a restart, the state is restored)
+//   BeforeStep         before each step, with its end time and size (couplers)
 //   AfterOuterIteration inside a step, after each PIMPLE outer iteration (couplers)
+//   Diverged           after each step: a reason to stop as diverged (body speed)
 //   AfterStep          after each finite step, with the step's record
 //   BeforeCheckpoint   before the driver writes the solver state (own files first)
 //   WriteHistory       into history.h5, beside the named columns
@@ -71,7 +75,11 @@ class Monitor {
   virtual ~Monitor() = default;
   // Mesh patches whose face forces the monitor reads.
   virtual std::vector<int> ForcePatches() const { return {}; }
+  virtual void RestoreScalars(const CheckpointScalars& /*scalars*/) {}
   virtual void Start(PimpleSolver& /*solver*/, History& /*history*/, const RunStart& /*start*/) {}
+  virtual void BeforeStep(PimpleSolver& /*solver*/, double /*t_new*/, double /*dt*/) {}
+  // Non-empty: the run stops as diverged with this reason.
+  virtual std::string Diverged() const { return {}; }
   virtual void AfterOuterIteration(PimpleSolver& /*solver*/, int /*outer*/) {}
   virtual void AfterStep(const PimpleSolver& solver, const StepRecord& record, History& history) = 0;
   virtual void BeforeCheckpoint(const PimpleSolver& /*solver*/) {}

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cfd/run/captive_sampler.h"
+#include "cfd/run/free_running.h"
 #include "cfd/run/resistance_monitor.h"
 #include "cfd/run/standard_monitors.h"
 
@@ -20,12 +21,13 @@ namespace {
 std::vector<std::unique_ptr<Monitor>> MakeMonitors(const Case& c) {
   const CaseSettings& s = c.settings;
   std::vector<std::unique_ptr<Monitor>> m;
+  if (c.free_body) m.push_back(std::make_unique<FreeRunningCoupler>(c));
   m.push_back(std::make_unique<FieldOutput>(s.output.directory, s.output.vtu_interval));
   m.push_back(std::make_unique<TurbulenceReport>());
   if (s.reference.speed > 0.0 && !c.force_patches.empty()) m.push_back(std::make_unique<ForceCoefficients>(c));
   if (s.resistance) m.push_back(std::make_unique<ResistanceMonitor>(c));
   if (s.output.captive) {
-    const PrimeScales scales{s.rho, s.reference.length, s.reference.draft, c.motion->motion().options().speed};
+    const PrimeScales scales{s.rho, s.reference.length, s.reference.draft, c.motion->body().nominal_speed()};
     m.push_back(std::make_unique<CaptiveSampler>(c, c.force_patches, scales));
   }
   return m;

@@ -140,6 +140,12 @@ class Loop {
     return interval > 0 && solver_.step() % interval == 0;
   }
   void Start();
+  std::string MonitorDivergence() const {
+    for (Monitor* m : monitors_) {
+      if (std::string why = m->Diverged(); !why.empty()) return why;
+    }
+    return {};
+  }
   void Checkpoint();
   void WriteHistory() const;
 
@@ -158,7 +164,11 @@ class Loop {
 void Loop::Start() {
   CheckpointScalars scalars;
   const bool restarted = !options_.restart.empty();
-  if (restarted) scalars = ReadCheckpoint(options_.restart, solver_);
+  if (restarted) {
+    scalars = ReadCheckpointScalars(options_.restart);
+    for (Monitor* m : monitors_) m->RestoreScalars(scalars);
+    ReadCheckpoint(options_.restart, solver_);
+  }
   time_control_.Start(solver_, restarted, scalars, c_.settings.reference.velocity());
   const RunStart start{restarted, scalars};
   for (Monitor* m : monitors_) m->Start(solver_, history_, start);
@@ -208,7 +218,9 @@ RunDriverSummary Loop::Run() {
       break;
     }
     const std::clock_t cpu_before = std::clock();
-    const StepSummary s = solver_.Step(time_control_.NextTimeStep());
+    const double dt = time_control_.NextTimeStep();
+    for (Monitor* m : monitors_) m->BeforeStep(solver_, solver_.time() + dt, dt);
+    const StepSummary s = solver_.Step(dt);
     const double step_cpu = static_cast<double>(std::clock() - cpu_before) / CLOCKS_PER_SEC;
     summary_.outer_iterations += s.outer_iterations;
     ++summary_.steps;
@@ -216,6 +228,13 @@ RunDriverSummary Loop::Run() {
       summary_.status = RunDriverSummary::Status::kDiverged;
       summary_.message =
           DivergenceMessage(s, history_, core_.courant, core_.courant_location, summary_.last_checkpoint);
+      break;
+    }
+    if (const std::string why = MonitorDivergence(); !why.empty()) {
+      summary_.status = RunDriverSummary::Status::kDiverged;
+      summary_.message = fmt::format("diverged at step {} (t = {:.6g} s): {}; last good checkpoint: {}", s.step,
+                                     s.time, why,
+                                     summary_.last_checkpoint.empty() ? "none" : summary_.last_checkpoint.string());
       break;
     }
     forces_.Compute(solver_, patches_, c_.settings.rho, c_.settings.nu);

@@ -72,8 +72,8 @@ std::vector<Sample> RunCaseText(const std::string& yaml,
     const StepSummary s = c.solver->Step(c.settings.time.dt);
     EXPECT_TRUE(s.finite);
     if (!s.finite) break;
-    const Pose pose = c.motion ? c.motion->motion().At(s.time) : Pose{};
-    const Vector3 centre = c.motion ? c.motion->motion().options().centre : Vector3::Zero();
+    const Pose pose = c.motion ? c.motion->body().At(s.time) : Pose{};
+    const Vector3 centre = c.motion ? c.motion->body().centre() : Vector3::Zero();
     out.push_back({s.time, ComputeHullLoads(*c.solver, hull, kRho, kNu, pose, centre).Total()});
   }
   return out;

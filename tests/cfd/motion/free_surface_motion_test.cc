@@ -65,8 +65,8 @@ Result RunText(const std::string& yaml, const Vector3& initial_velocity) {
   const int top = mesh.FindPatch("zmax");
   const auto* lfs = dynamic_cast<const LinearizedFreeSurface*>(&c.solver->p().bc(top));
   EXPECT_NE(lfs, nullptr);
-  const Pose pose = c.motion ? c.motion->motion().At(c.solver->time()) : Pose{};
-  const Vector3 centre = c.motion ? c.motion->motion().options().centre : Vector3::Zero();
+  const Pose pose = c.motion ? c.motion->body().At(c.solver->time()) : Pose{};
+  const Vector3 centre = c.motion ? c.motion->body().centre() : Vector3::Zero();
   Result r;
   const std::vector<int> body = {mesh.FindPatch("obstacle")};
   r.X = ComputeHullLoads(*c.solver, body, kRho, kNu, pose, centre).Total().X;

@@ -35,8 +35,8 @@ PlanarLoad Drift(const fs::path& poly_mesh, double degrees, int steps) {
   for (int i = 0; i < steps; ++i) {
     const StepSummary s = c.solver->Step(c.settings.time.dt);
     EXPECT_TRUE(s.finite);
-    load = ComputeHullLoads(*c.solver, hull, 1000.0, 5e-4, c.motion->motion().At(s.time),
-                            c.motion->motion().options().centre)
+    load = ComputeHullLoads(*c.solver, hull, 1000.0, 5e-4, c.motion->body().At(s.time),
+                            c.motion->body().centre())
                .Total();
   }
   return load;
