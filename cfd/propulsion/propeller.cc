@@ -10,6 +10,9 @@
 namespace kelvin::cfd {
 
 void PropellerOptions::Validate() const {
+  if (!(mesh_share > 0 && mesh_share <= 1)) {
+    throw ConfigError(fmt::format("{}.mesh_share = {}: expected a value in (0, 1]", name, mesh_share));
+  }
   if (!(thrust_relaxation > 0 && thrust_relaxation <= 1)) {
     throw ConfigError(
         fmt::format("{}.thrust_relaxation = {}: expected a value in (0, 1]", name, thrust_relaxation));
@@ -20,6 +23,11 @@ Propeller::Propeller(ActuatorDisk disk, sim::OpenWaterCurve curve, PropellerOpti
     : disk_(std::move(disk)), curve_(std::move(curve)), options_(std::move(options)) {
   options_.Validate();
   curve_.Validate(options_.name, options_.name + ".open_water");
+  if (std::abs(disk_.mesh_share() / options_.mesh_share - 1.0) > 0.05) {
+    throw ConfigError(fmt::format("{}.mesh_share = {}: the disk's cells hold {:.4f} of its cylinder; expected the "
+                                  "share within 5% (1, or 1/2, 1/4 for a disk cut by symmetry planes)",
+                                  options_.name, options_.mesh_share, disk_.mesh_share()));
+  }
 }
 
 double Propeller::EffectiveInflow(double U_disk, double thrust, double rho) const {
@@ -42,7 +50,7 @@ double Propeller::EffectiveInflow(double U_disk, double thrust, double rho) cons
 double Propeller::AnnularInflow(double U_disk, double thrust, double rho) const {
   const std::vector<double>& w = disk_.axial_weights();
   const std::vector<double>& load = disk_.loading_per_unit_thrust();
-  const double mesh_thrust = disk_.mesh_share() * thrust;
+  const double mesh_thrust = options_.mesh_share * thrust;
   auto F = [&](double u, double* dF) {
     double f = -U_disk, d = 0.0;
     for (std::size_t c = 0; c < w.size(); ++c) {
@@ -60,17 +68,17 @@ double Propeller::AnnularInflow(double U_disk, double thrust, double rho) const 
   for (int it = 0; it < 100 && hi - lo > 1e-14 * std::abs(U_disk); ++it) {
     double dF = 0.0;
     const double f = F(u, &dF);
+    if (std::abs(f) <= 1e-15 * std::abs(U_disk)) break;
     (f > 0 ? hi : lo) = u;
     const double newton = dF > 0 ? u - f / dF : lo - 1.0;
     u = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
-    if (std::abs(f) <= 1e-15 * std::abs(U_disk)) break;
   }
   return u;
 }
 
 void Propeller::Apply(double thrust, double torque, double rho, const Eigen::Matrix3d& R,
                       std::vector<Vector3>& cell_source) const {
-  const double share = disk_.mesh_share();
+  const double share = options_.mesh_share;
   disk_.AddBodyForce(share * thrust, options_.apply_torque ? share * torque : 0.0, rho, R, cell_source);
 }
 

@@ -53,6 +53,12 @@ struct PropellerOptions {
   // Apply the torque (swirl). Off only on a domain cut by symmetry planes
   // through the axis, which cannot carry swirl; K_Q and Q are still reported.
   bool apply_torque = true;
+  // The share of the propeller the mesh holds: 1, or 1/2 and 1/4 for a disk
+  // cut by one or two symmetry planes through its axis. The mesh carries
+  // mesh_share T and mesh_share Q; T, Q, K_T, K_Q are the whole propeller's.
+  // Checked against the disk's sampled share (ActuatorDisk::mesh_share)
+  // within 5%.
+  double mesh_share = 1.0;
   void Validate() const;  // throws ConfigError naming the disk's name
   std::string name = "propeller";
 };
