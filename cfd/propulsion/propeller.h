@@ -48,7 +48,7 @@ struct PropellerOptions {
   InflowCorrection correction = InflowCorrection::kAnnularMomentum;
   // T <- T_prev + relaxation (T_new - T_prev), and Q likewise, from the
   // second Update on (the first takes T_new). 1 = none. The open-water runs
-  // of actuator_disk_test use 0.5 and settle in about 55 steps; 1 has not
+  // of actuator_disk_test use 0.5 and settle (3 CPU s on the coarse grid); 1 has not
   // been tried since a root-finder fix that made the coupling settle.
   double thrust_relaxation = 1.0;
   // Apply the torque (swirl). Off only on a domain cut by symmetry planes
