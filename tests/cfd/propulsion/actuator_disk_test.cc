@@ -495,10 +495,13 @@ OpenWaterPoint OpenWater(int grid, double J_true) {
   return p;
 }
 
+// On the medium grid of the family (11 cells across D; the coarse one has
+// 8, below the disk's recommended 10, and misses 2% by 4%: see BENCHMARKS
+// actuator_disk). KELVIN_ACTUATOR_DISK_OPEN_WATER_GRID picks another.
 TEST(PropellerOpenWater, RecoversKTAtThreeJ) {
   const char* grid = std::getenv("KELVIN_ACTUATOR_DISK_OPEN_WATER_GRID");
   for (double J : {0.6, 0.7, 0.8}) {
-    const OpenWaterPoint p = OpenWater(grid ? std::atoi(grid) : 0, J);
+    const OpenWaterPoint p = OpenWater(grid ? std::atoi(grid) : 1, J);
     EXPECT_NEAR(p.error, 0.0, 0.02) << "J_true = " << J;
   }
 }
