@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kSamplesPerEdge = 4;  // stratified samples per tetrahedron: 4^3
+constexpr int kMaxSplits = 5;      // at most 8^5 sub-tetrahedra per tetrahedron of a cell
 
 [[noreturn]] void BadOption(const std::string& name, const std::string& key, const std::string& value,
                             const std::string& expected) {
@@ -116,6 +117,38 @@ void SampleTetrahedron(const ActuatorDiskOptions& o, const Vector3& p0, const Ve
   }
 }
 
+// Samples a tetrahedron that may overlap the disk: split at the edge
+// midpoints into 8 (4 corners and the central octahedron cut along one
+// diagonal) until its edges are below a quarter of the disk thickness (and
+// of the annulus width), so that a disk thinner than the cells is not
+// aliased by the fixed sample lattice; tetrahedra clear of the disk are
+// skipped.
+void SampleTetrahedronAdaptive(const ActuatorDiskOptions& o, const Vector3& p0, const Vector3& p1, const Vector3& p2,
+                               const Vector3& p3, Integrals& out, int depth) {
+  const Vector3 centroid = 0.25 * (p0 + p1 + p2 + p3);
+  const double radius = std::max({(p0 - centroid).norm(), (p1 - centroid).norm(), (p2 - centroid).norm(),
+                                  (p3 - centroid).norm()});
+  if (DistanceToDisk(o, centroid, 0.0) > radius) return;
+  const double edge = std::max({(p1 - p0).norm(), (p2 - p0).norm(), (p3 - p0).norm(), (p2 - p1).norm(),
+                                (p3 - p1).norm(), (p3 - p2).norm()});
+  const double scale = std::min(o.thickness, 0.5 * o.diameter * (1.0 - o.hub_ratio));
+  if (depth >= kMaxSplits || edge <= 0.25 * scale) {
+    SampleTetrahedron(o, p0, p1, p2, p3, out);
+    return;
+  }
+  const Vector3 m01 = 0.5 * (p0 + p1), m02 = 0.5 * (p0 + p2), m03 = 0.5 * (p0 + p3);
+  const Vector3 m12 = 0.5 * (p1 + p2), m13 = 0.5 * (p1 + p3), m23 = 0.5 * (p2 + p3);
+  const int d = depth + 1;
+  SampleTetrahedronAdaptive(o, p0, m01, m02, m03, out, d);
+  SampleTetrahedronAdaptive(o, m01, p1, m12, m13, out, d);
+  SampleTetrahedronAdaptive(o, m02, m12, p2, m23, out, d);
+  SampleTetrahedronAdaptive(o, m03, m13, m23, p3, out, d);
+  SampleTetrahedronAdaptive(o, m02, m13, m01, m03, out, d);
+  SampleTetrahedronAdaptive(o, m02, m13, m03, m23, out, d);
+  SampleTetrahedronAdaptive(o, m02, m13, m23, m12, out, d);
+  SampleTetrahedronAdaptive(o, m02, m13, m12, m01, out, d);
+}
+
 Integrals SampleCell(const Mesh& mesh, const ActuatorDiskOptions& o, int c) {
   Integrals in;
   const auto offsets = mesh.cell_face_offsets();
@@ -126,7 +159,7 @@ Integrals SampleCell(const Mesh& mesh, const ActuatorDiskOptions& o, int c) {
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const Vector3& a = mesh.points()[pts[i]];
       const Vector3& b = mesh.points()[pts[(i + 1) % pts.size()]];
-      SampleTetrahedron(o, xc, mesh.face_centres()[f], a, b, in);
+      SampleTetrahedronAdaptive(o, xc, mesh.face_centres()[f], a, b, in, 0);
     }
   }
   return in;

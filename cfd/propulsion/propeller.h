@@ -103,6 +103,11 @@ class Propeller {
     double n = 0.0;
   };
   State GetState() const { return state_; }
+  // Adds the body force of the state's load (a restart restores the cell
+  // source the solver had).
+  void ApplyState(double rho, const Eigen::Matrix3d& R, std::vector<Vector3>& cell_source) const {
+    Apply(state_.thrust, state_.torque, rho, R, cell_source);
+  }
   void SetState(const State& state) { state_ = state; }
 
   const ActuatorDisk& disk() const { return disk_; }

@@ -1,5 +1,7 @@
 #include "cfd/run/case_loader.h"
 
+#include "cfd/run/propeller_actuator.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -372,6 +374,8 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   }
   ValidateAt(t, [&] { s.time.Validate(); });
   CheckRunSections(root, c);
+  // The propeller finds its cells on the body-fixed mesh (not placed yet).
+  if (auto propeller = LoadPropellerActuator(c, root)) c.actuators.push_back(std::move(propeller));
   return c;
 }
 

@@ -18,6 +18,7 @@
 
 #include "cfd/motion/free_body.h"
 #include "cfd/motion/mesh_motion.h"
+#include "cfd/run/body_actuator.h"
 #include "cfd/run/free_running_loader.h"
 #include "cfd/run/time_control.h"
 #include "cfd/solver/pimple_solver.h"
@@ -85,6 +86,8 @@ struct Case {
   std::shared_ptr<FreeBody> free_body;
   std::optional<FreeRunningSettings> free_running;
   std::vector<int> hull_patches;
+  // What acts on the free body through the flow (`propeller:`).
+  std::vector<std::unique_ptr<BodyActuator>> actuators;
   std::unique_ptr<PimpleSolver> solver;
   LinearizedFreeSurface* free_surface = nullptr;  // the pressure condition that owns eta, or null
   std::vector<int> force_patches;                 // mesh indices of output.forces

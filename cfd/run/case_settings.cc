@@ -139,7 +139,7 @@ void ResistanceOptions::Validate() const {
 
 CaseSettings ReadCaseSettings(const ConfigNode& root, const fs::path& case_dir) {
   root.ExpectKeys({"mesh", "physics", "reference", "schemes", "solution", "time", "boundary", "output", "motion",
-                   "turbulence", "resistance"});
+                   "turbulence", "resistance", "propeller"});
   CaseSettings s;
   s.file = root.source();
   const ConfigNode ph = root["physics"];

@@ -26,10 +26,7 @@ FreeRunningCoupler::FreeRunningCoupler(const Case& c)
       nu_(c.settings.nu),
       length_(c.free_running ? c.free_running->ship.principal.Lpp : 0.0) {
   KELVIN_CHECK(body_ != nullptr && c.motion != nullptr, "a free-running case (motion: {kind: free})");
-}
-
-void FreeRunningCoupler::AddActuator(std::unique_ptr<BodyActuator> actuator) {
-  actuators_.push_back(std::move(actuator));
+  for (const auto& a : c.actuators) actuators_.push_back(a.get());
 }
 
 void FreeRunningCoupler::RestoreScalars(const CheckpointScalars& scalars) {
@@ -44,10 +41,15 @@ void FreeRunningCoupler::RestoreScalars(const CheckpointScalars& scalars) {
   }
   body_->SetState(FreeBodyState::Unpack(packed));
   travelled_ = scalars.count("free_body_travelled") ? scalars.at("free_body_travelled") : 0.0;
-  for (auto& a : actuators_) a->RestoreScalars(scalars);
+  for (BodyActuator* a : actuators_) a->RestoreScalars(scalars);
 }
 
-void FreeRunningCoupler::Start(PimpleSolver& /*solver*/, History& h, const RunStart& /*start*/) {
+void FreeRunningCoupler::Start(PimpleSolver& solver, History& h, const RunStart& start) {
+  if (start.restarted && !actuators_.empty()) {
+    cell_source_.assign(solver.mesh().n_cells(), Vector3::Zero());
+    for (const BodyActuator* a : actuators_) a->ApplyRestored(solver, cell_source_);
+    solver.SetCellSource(cell_source_);
+  }
   columns_.trajectory = h.Add("body/trajectory", 3, "m, m, rad", "x0, y0 (starboard) and heading psi of the reference point");
   columns_.velocity = h.Add("body/velocity", 3, "m/s, m/s, rad/s", "u, v, r in ship axes (x forward, y starboard)");
   columns_.hull = h.Add("body/hull_load", 3, "N, N, N m", "X, Y, N of the water on the hull patches, ship axes");
@@ -56,12 +58,12 @@ void FreeRunningCoupler::Start(PimpleSolver& /*solver*/, History& h, const RunSt
                               "X, Y, N the carriage supplies on the held degrees of freedom (0 on free ones)");
   columns_.change = h.Add("body/coupling_change", 1, "1",
                           "velocity change of the last outer iteration's coupling correction / speed scale");
-  for (auto& a : actuators_) a->Start(h);
+  for (BodyActuator* a : actuators_) a->Start(h);
 }
 
 void FreeRunningCoupler::BeforeStep(PimpleSolver& /*solver*/, double t_new, double dt) {
   body_->BeginStep(t_new, dt);
-  for (auto& a : actuators_) a->BeforeStep(t_new, dt);
+  for (BodyActuator* a : actuators_) a->BeforeStep(t_new, dt);
 }
 
 void FreeRunningCoupler::AfterOuterIteration(PimpleSolver& solver, int outer) {
@@ -69,7 +71,7 @@ void FreeRunningCoupler::AfterOuterIteration(PimpleSolver& solver, int outer) {
   actuator_load_ = {};
   if (!actuators_.empty()) {
     cell_source_.assign(solver.mesh().n_cells(), Vector3::Zero());
-    for (auto& a : actuators_) a->Update(solver, *body_, outer, cell_source_, actuator_load_);
+    for (BodyActuator* a : actuators_) a->Update(solver, *body_, outer, cell_source_, actuator_load_);
     solver.SetCellSource(cell_source_);
   }
   change_ = body_->Correct(Sum(hull_loads_.Total(), actuator_load_), length_);
@@ -80,7 +82,7 @@ void FreeRunningCoupler::AfterOuterIteration(PimpleSolver& solver, int outer) {
 std::string FreeRunningCoupler::Diverged() const {
   std::string why;
   if (body_->Diverged(&why)) return why;
-  for (const auto& a : actuators_) {
+  for (const BodyActuator* a : actuators_) {
     if (std::string w = a->Diverged(); !w.empty()) return w;
   }
   return {};
@@ -99,18 +101,18 @@ void FreeRunningCoupler::AfterStep(const PimpleSolver& /*solver*/, const StepRec
   h.Set(columns_.change, change_);
   const FreeBodyState s = body_->state();
   travelled_ += std::hypot(s.pos[0] - s.pos_old[0], s.pos[1] - s.pos_old[1]);
-  for (auto& a : actuators_) a->AfterStep(*body_, h);
+  for (BodyActuator* a : actuators_) a->AfterStep(*body_, h);
 }
 
 void FreeRunningCoupler::AddCheckpointScalars(CheckpointScalars& scalars) const {
   const std::vector<double> packed = body_->state().Pack();
   for (std::size_t i = 0; i < packed.size(); ++i) scalars[ScalarName(i)] = packed[i];
   scalars["free_body_travelled"] = travelled_;
-  for (const auto& a : actuators_) a->AddCheckpointScalars(scalars);
+  for (const BodyActuator* a : actuators_) a->AddCheckpointScalars(scalars);
 }
 
 void FreeRunningCoupler::WriteHistory(data::H5Writer& writer) const {
-  for (const auto& a : actuators_) a->WriteHistory(writer);
+  for (const BodyActuator* a : actuators_) a->WriteHistory(writer);
 }
 
 std::vector<std::string> FreeRunningCoupler::Finish(const PimpleSolver& /*solver*/) {
@@ -123,7 +125,7 @@ std::vector<std::string> FreeRunningCoupler::Finish(const PimpleSolver& /*solver
                   length_ > 0.0 ? fmt::format(" ({:.3g} ship lengths)", travelled_ / length_) : ""),
       fmt::format("coupling: {} scheme, last outer iteration changed the velocities by {:.2e} of the speed scale",
                   body_->options().coupling == BodyCoupling::kStabilised ? "stabilised" : "explicit", change_)};
-  for (auto& a : actuators_) {
+  for (BodyActuator* a : actuators_) {
     for (std::string& l : a->Finish()) lines.push_back(std::move(l));
   }
   return lines;

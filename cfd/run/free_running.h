@@ -25,30 +25,11 @@
 
 namespace kelvin::cfd {
 
-// Something that acts on the body through the flow (the propeller, later the
-// rudder): each outer iteration it reads the flow, adds its body force to the
-// cell source and returns its load on the body.
-class BodyActuator {
- public:
-  virtual ~BodyActuator() = default;
-  // `load`: its load on the body, ship axes about the reference point.
-  virtual void Update(const PimpleSolver& solver, const FreeBody& body, int outer, std::vector<Vector3>& cell_source,
-                      PlanarLoad& load) = 0;
-  virtual void BeforeStep(double /*t_new*/, double /*dt*/) {}
-  virtual void Start(History& /*history*/) {}
-  virtual void AfterStep(const FreeBody& /*body*/, History& /*history*/) {}
-  virtual void AddCheckpointScalars(CheckpointScalars& /*scalars*/) const {}
-  virtual void RestoreScalars(const CheckpointScalars& /*scalars*/) {}
-  virtual void WriteHistory(data::H5Writer& /*writer*/) const {}
-  virtual std::vector<std::string> Finish() { return {}; }
-  virtual std::string Diverged() const { return {}; }
-};
-
 class FreeRunningCoupler final : public Monitor {
  public:
-  // `c` must have a free body (motion: {kind: free}).
+  // `c` must have a free body (motion: {kind: free}); its actuators (the
+  // propeller) must outlive the coupler.
   explicit FreeRunningCoupler(const Case& c);
-  void AddActuator(std::unique_ptr<BodyActuator> actuator);
 
   std::vector<int> ForcePatches() const override { return hull_; }
   void RestoreScalars(const CheckpointScalars& scalars) override;
@@ -74,7 +55,7 @@ class FreeRunningCoupler final : public Monitor {
   const RigidMeshMotion& motion_;
   std::vector<int> hull_;
   double rho_, nu_, length_;
-  std::vector<std::unique_ptr<BodyActuator>> actuators_;
+  std::vector<BodyActuator*> actuators_;
   HullLoads hull_loads_;
   PlanarLoad actuator_load_;
   std::vector<Vector3> cell_source_;

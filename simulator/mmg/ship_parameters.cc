@@ -32,6 +32,49 @@ void Finite(const std::string& src, const std::string& key, double v) {
   if (!std::isfinite(v)) Unphysical(src, key, v, "a finite value");
 }
 
+void ReadRudder(const data::ConfigNode& r, RudderParameters& rp) {
+  r.ExpectKeys({"A_R", "H_R", "t_R", "a_H", "x_H_prime", "x_R_prime", "gamma_R_minus", "gamma_R_plus",
+                "l_R_prime", "epsilon", "kappa", "f_alpha"});
+  rp.A_R = r.Get<double>("A_R");
+  rp.H_R = r.Get<double>("H_R");
+  rp.t_R = r.Get<double>("t_R");
+  rp.a_H = r.Get<double>("a_H");
+  rp.x_H_prime = r.Get<double>("x_H_prime");
+  rp.x_R_prime = r.Get<double>("x_R_prime", -0.5);
+  rp.gamma_R_minus = r.Get<double>("gamma_R_minus");
+  rp.gamma_R_plus = r.Get<double>("gamma_R_plus");
+  rp.l_R_prime = r.Get<double>("l_R_prime");
+  rp.epsilon = r.Get<double>("epsilon");
+  rp.kappa = r.Get<double>("kappa");
+  rp.f_alpha = r.Get<double>("f_alpha");
+
+}
+
+std::vector<double> Column(const data::ConfigNode& table, const char* key) {
+  return table[key].As<std::vector<double>>();
+}
+
+void ReadCfdPropeller(const data::ConfigNode& pr, const std::filesystem::path& path, PropellerParameters& pp) {
+  if (pr.Has("hub_ratio")) pp.hub_ratio = pr.Get<double>("hub_ratio");
+  pp.y_P = pr.Get<double>("y_P", 0.0);
+  if (pr.Has("z_P")) pp.z_P = pr.Get<double>("z_P");
+  pp.blades = pr.Get<int>("blades", 0);
+  if (auto t = pr.Find("open_water")) {
+    t->ExpectKeys({"J", "K_T", "K_Q", "source"});
+    OpenWaterCurve c;
+    c.J = Column(*t, "J");
+    c.K_T = Column(*t, "K_T");
+    c.K_Q = Column(*t, "K_Q");
+    c.origin = path.string() + ": propeller.open_water";
+    pp.open_water = std::move(c);
+  }
+  if (auto q = pr.Find("K_Q_coefficients")) {
+    const auto k = q->As<std::vector<double>>();
+    if (k.size() != 3) q->Fail("a list of three coefficients [q0, q1, q2] of K_Q = q0 + q1 J + q2 J^2");
+    pp.kq = std::array<double, 3>{k[0], k[1], k[2]};
+  }
+}
+
 }  // namespace
 
 void ShipParameters::Validate(const std::string& src) const {
@@ -55,9 +98,26 @@ void ShipParameters::Validate(const std::string& src) const {
   if (hull.J_z < 0) Unphysical(src, "hull.J_z_prime", hull.J_z, "a non-negative added inertia");
   const PropellerParameters& pp = propeller;
   Positive(src, "propeller.D_p", pp.D_p);
-  InRange(src, "propeller.t_P", pp.t_P, 0.0, 1.0);
-  InRange(src, "propeller.w_P0", pp.w_P0, 0.0, 1.0);
-  if (!(pp.k0 > 0)) Unphysical(src, "propeller.k0", pp.k0, "K_T(0) > 0");
+  if (pp.mmg) {
+    InRange(src, "propeller.t_P", pp.t_P, 0.0, 1.0);
+    InRange(src, "propeller.w_P0", pp.w_P0, 0.0, 1.0);
+    if (!(pp.k0 > 0)) Unphysical(src, "propeller.k0", pp.k0, "K_T(0) > 0");
+  }
+  if (pp.hub_ratio) InRange(src, "propeller.hub_ratio", *pp.hub_ratio, 0.0, 0.5);
+  if (pp.z_P) Positive(src, "propeller.z_P", *pp.z_P);
+  Finite(src, "propeller.y_P", pp.y_P);
+  if (pp.open_water) pp.open_water->Validate(src, "propeller.open_water");
+  if (has_rudder) ValidateRudder(src);
+  if (!(limits.rudder_max > 0 && limits.rudder_max <= M_PI / 2)) {
+    Unphysical(src, "actuators.rudder_max_deg", limits.rudder_max / kDeg, "a value in (0, 90]");
+  }
+  Positive(src, "actuators.rudder_rate_deg_s", limits.rudder_rate / kDeg);
+  if (limits.rps_rate < 0) Unphysical(src, "actuators.rps_rate", limits.rps_rate, "a non-negative value");
+  Positive(src, "ship.scale", scale);
+  if (approach_speed < 0) Unphysical(src, "conditions.approach_speed", approach_speed, "a non-negative speed");
+}
+
+void ShipParameters::ValidateRudder(const std::string& src) const {
   const RudderParameters& rp = rudder;
   Positive(src, "rudder.A_R", rp.A_R);
   Positive(src, "rudder.H_R", rp.H_R);
@@ -66,13 +126,6 @@ void ShipParameters::Validate(const std::string& src) const {
   Positive(src, "rudder.f_alpha", rp.f_alpha);
   if (rp.gamma_R_minus < 0) Unphysical(src, "rudder.gamma_R_minus", rp.gamma_R_minus, "a non-negative value");
   if (rp.gamma_R_plus < 0) Unphysical(src, "rudder.gamma_R_plus", rp.gamma_R_plus, "a non-negative value");
-  if (!(limits.rudder_max > 0 && limits.rudder_max <= M_PI / 2)) {
-    Unphysical(src, "actuators.rudder_max_deg", limits.rudder_max / kDeg, "a value in (0, 90]");
-  }
-  Positive(src, "actuators.rudder_rate_deg_s", limits.rudder_rate / kDeg);
-  if (limits.rps_rate < 0) Unphysical(src, "actuators.rps_rate", limits.rps_rate, "a non-negative value");
-  Positive(src, "ship.scale", scale);
-  if (approach_speed < 0) Unphysical(src, "conditions.approach_speed", approach_speed, "a non-negative speed");
 }
 
 ShipParameters LoadShip(const std::filesystem::path& path) {
@@ -100,20 +153,29 @@ ShipParameters LoadShip(const std::filesystem::path& path) {
   s.principal.nu = p.Get<double>("nu", 1.1883e-6);
   s.principal.wetted_area = p.Get<double>("wetted_area", 0.0);
 
-  const ConfigNode h = root["hull"];
-  std::vector<std::string> names(HullCoefficients<double>::kNames.begin(), HullCoefficients<double>::kNames.end());
-  h.ExpectKeys(names);
-  for (int i = 0; i < HullCoefficients<double>::kCount; ++i) s.hull[i] = h.Get<double>(names[i]);
+  s.has_hull = root.Has("hull");
+  if (s.has_hull) {
+    const ConfigNode h = root["hull"];
+    std::vector<std::string> names(HullCoefficients<double>::kNames.begin(), HullCoefficients<double>::kNames.end());
+    h.ExpectKeys(names);
+    for (int i = 0; i < HullCoefficients<double>::kCount; ++i) s.hull[i] = h.Get<double>(names[i]);
+  }
 
   const ConfigNode pr = root["propeller"];
-  pr.ExpectKeys({"D_p", "t_P", "w_P0", "k0", "k1", "k2", "x_P_prime", "C1", "C2_pos", "C2_neg", "reverse_KT"});
+  pr.ExpectKeys({"D_p", "t_P", "w_P0", "k0", "k1", "k2", "x_P_prime", "C1", "C2_pos", "C2_neg", "reverse_KT",
+                 "hub_ratio", "y_P", "z_P", "open_water", "K_Q_coefficients", "blades"});
   auto& pp = s.propeller;
   pp.D_p = pr.Get<double>("D_p");
-  pp.t_P = pr.Get<double>("t_P");
-  pp.w_P0 = pr.Get<double>("w_P0");
-  pp.k0 = pr.Get<double>("k0");
-  pp.k1 = pr.Get<double>("k1");
-  pp.k2 = pr.Get<double>("k2");
+  // The MMG keys: required with a hull section, optional for a CFD-only file.
+  pp.mmg = s.has_hull || pr.Has("k0");
+  if (pp.mmg) {
+    pp.t_P = pr.Get<double>("t_P");
+    pp.w_P0 = pr.Get<double>("w_P0");
+    pp.k0 = pr.Get<double>("k0");
+    pp.k1 = pr.Get<double>("k1");
+    pp.k2 = pr.Get<double>("k2");
+  }
+  ReadCfdPropeller(pr, path, pp);
   pp.x_P_prime = pr.Get<double>("x_P_prime");
   pp.C1 = pr.Get<double>("C1", 2.0);
   pp.C2_pos = pr.Get<double>("C2_pos", 1.6);
@@ -124,23 +186,8 @@ ShipParameters LoadShip(const std::filesystem::path& path) {
     pp.reverse_kt = std::array<double, 3>{k[0], k[1], k[2]};
   }
 
-  const ConfigNode r = root["rudder"];
-  r.ExpectKeys({"A_R", "H_R", "t_R", "a_H", "x_H_prime", "x_R_prime", "gamma_R_minus", "gamma_R_plus",
-                "l_R_prime", "epsilon", "kappa", "f_alpha"});
-  auto& rp = s.rudder;
-  rp.A_R = r.Get<double>("A_R");
-  rp.H_R = r.Get<double>("H_R");
-  rp.t_R = r.Get<double>("t_R");
-  rp.a_H = r.Get<double>("a_H");
-  rp.x_H_prime = r.Get<double>("x_H_prime");
-  rp.x_R_prime = r.Get<double>("x_R_prime", -0.5);
-  rp.gamma_R_minus = r.Get<double>("gamma_R_minus");
-  rp.gamma_R_plus = r.Get<double>("gamma_R_plus");
-  rp.l_R_prime = r.Get<double>("l_R_prime");
-  rp.epsilon = r.Get<double>("epsilon");
-  rp.kappa = r.Get<double>("kappa");
-  rp.f_alpha = r.Get<double>("f_alpha");
-
+  s.has_rudder = root.Has("rudder");
+  if (s.has_rudder) ReadRudder(root["rudder"], s.rudder);
   if (auto a = root.Find("actuators")) {
     a->ExpectKeys({"rudder_max_deg", "rudder_rate_deg_s", "rps_max", "rps_rate"});
     s.limits.rudder_max = a->Get<double>("rudder_max_deg", 35.0) * kDeg;
@@ -154,6 +201,39 @@ ShipParameters LoadShip(const std::filesystem::path& path) {
   }
   s.Validate(path.string());
   return s;
+}
+
+void RequireManeuveringModel(const ShipParameters& ship, const std::string& source) {
+  std::vector<std::string> missing;
+  if (!ship.has_hull) missing.push_back("hull derivatives (a hull section, or --derivatives)");
+  if (!ship.has_rudder) missing.push_back("a rudder section");
+  if (!ship.propeller.mmg) missing.push_back("the MMG propeller keys t_P, w_P0, k0, k1, k2");
+  if (missing.empty()) return;
+  std::string list;
+  for (const std::string& m : missing) list += (list.empty() ? "" : "; ") + m;
+  throw ConfigError(fmt::format("{}: ship '{}' is a hull for CFD only; the MMG model needs {}", source, ship.name, list));
+}
+
+OpenWaterCurve CfdOpenWater(const ShipParameters& ship, const std::string& source) {
+  const PropellerParameters& pp = ship.propeller;
+  if (pp.open_water) return *pp.open_water;
+  if (!pp.mmg || !pp.kq) {
+    throw ConfigError(fmt::format(
+        "{}: propeller: the CFD propeller needs K_T and K_Q: an open_water: {{J, K_T, K_Q}} table, or k0, k1, k2 "
+        "with K_Q_coefficients [q0, q1, q2]",
+        source));
+  }
+  // Up to the J where K_T = 0 (k0 > 0 and K_T decreasing).
+  const double a = pp.k2, b = pp.k1, c = pp.k0;
+  const double J0 = std::abs(a) < 1e-12 ? -c / b : (-b - std::sqrt(b * b - 4 * a * c)) / (2 * a);
+  if (!(J0 > 0) || !std::isfinite(J0)) {
+    throw ConfigError(fmt::format("{}: propeller.k0, k1, k2: K_T never reaches 0 for J > 0; expected a K_T falling with J",
+                                  source));
+  }
+  OpenWaterCurve curve = OpenWaterCurve::FromQuadratics({pp.k0, pp.k1, pp.k2}, *pp.kq, J0);
+  curve.origin = source + ": propeller.k0..k2, K_Q_coefficients";
+  curve.Validate(source, "propeller (k0..k2, K_Q_coefficients)");
+  return curve;
 }
 
 ShipParameters ScaleShip(const ShipParameters& ship, double lambda, bool friction_correction) {

@@ -14,6 +14,8 @@
 #include <string>
 #include <string_view>
 
+#include "simulator/mmg/open_water.h"
+
 namespace kelvin::sim {
 
 // The hull polynomial and added masses, templated so that identification can
@@ -74,6 +76,20 @@ struct PropellerParameters {
   // (negative when going ahead), negative K_T meaning astern thrust
   // (T = rho n^2 D^4 K_T). Absent for most published MMG sets.
   std::optional<std::array<double, 3>> reverse_kt;
+
+  // The body-force propeller of the CFD (cfd/propulsion) reads these too:
+  std::optional<double> hub_ratio;  // r_hub / R
+  double y_P = 0.0;                 // m, shaft axis to starboard of the centreline
+  std::optional<double> z_P;        // m, depth of the shaft axis below the design waterline
+  // Open-water table (propeller.open_water: {J, K_T, K_Q}); without it the
+  // CFD tabulates k0 + k1 J + k2 J^2 with K_Q = q0 + q1 J + q2 J^2 from
+  // propeller.K_Q_coefficients, up to the J where K_T = 0.
+  std::optional<OpenWaterCurve> open_water;
+  std::optional<std::array<double, 3>> kq;
+  int blades = 0;  // descriptive (0: not given)
+  // The MMG keys (t_P, w_P0, k0..k2) are optional in a ship file without a
+  // hull section (a hull for CFD only); false when they are absent.
+  bool mmg = true;
 };
 
 struct RudderParameters {
@@ -109,6 +125,11 @@ struct ShipParameters {
   RudderParameters rudder;
   ActuatorLimits limits;
   double approach_speed = 0;  // m/s, default approach speed U0 for maneuvers
+  // A ship file for CFD alone may leave out the hull and rudder sections
+  // (and the MMG propeller keys): the simulator then needs --derivatives
+  // and refuses a ship without a rudder (RequireManeuveringModel).
+  bool has_hull = true;
+  bool has_rudder = true;
 
   double mass() const { return principal.rho * principal.displacement; }
   double I_zG() const { return mass() * (principal.k_zz * principal.Lpp) * (principal.k_zz * principal.Lpp); }
@@ -116,10 +137,21 @@ struct ShipParameters {
   // Throws kelvin::ModelError naming the parameter, its value and what is
   // physical (positive mass, rudder area > 0, 0 <= t_P < 1, ...).
   void Validate(const std::string& source_name = "ship") const;
+
+ private:
+  void ValidateRudder(const std::string& source_name) const;
 };
 
 // Loads a ship file (data/ships/<ship>.yaml). Every unknown key is an error.
 ShipParameters LoadShip(const std::filesystem::path& path);
+
+// Throws ConfigError naming `source` when the ship lacks what the MMG model
+// needs (hull derivatives, rudder, the MMG propeller keys).
+void RequireManeuveringModel(const ShipParameters& ship, const std::string& source);
+
+// The open-water curve of the CFD propeller: the table, or the quadratics
+// (see PropellerParameters); a ConfigError naming `source` without K_Q.
+OpenWaterCurve CfdOpenWater(const ShipParameters& ship, const std::string& source);
 
 // The same nondimensional model at another geometric scale (Froude scaling):
 // lengths x lambda, areas x lambda^2, volume x lambda^3, speeds x sqrt(lambda),

@@ -232,7 +232,7 @@ std::pair<double, double> CubeMean(const ActuatorDiskOptions& o, const Vector3& 
 // cell mean over the cube by quadrature and the integral by Simpson's
 // rule, and the tangential one Q <g / r'>_cell / (R int g dV) (the torque
 // integral int r (g / r') dV = R int g dV). Within 1%: the sampled
-// integrals of the class (24 tetrahedra x 64 points per cell) against
+// integrals of the class (tetrahedra split to a quarter of the thickness, 64 points each) against
 // 4096-point cube means, and the normalization by the discrete sums
 // (discrete/analytic within 0.3% here).
 TEST(ActuatorDiskLoads, HoughOrdwayRadialShape) {
@@ -249,7 +249,7 @@ TEST(ActuatorDiskLoads, HoughOrdwayRadialShape) {
   double worst_axial = 0.0, worst_tangential = 0.0;
   for (std::size_t i = 0; i < disk.cells().size(); ++i) {
     const int c = disk.cells()[i];
-    if (disk.volume_fractions()[i] < 1.0) continue;
+    if (disk.volume_fractions()[i] < 1.0 - 1e-9) continue;  // wholly inside (to round-off)
     const Vector3 d = mesh.cell_centres()[c] - o.centre;
     const Vector3 radial = d - d.dot(o.axis) * o.axis;
     const auto [g, g_over_r] = CubeMean(o, mesh.cell_centres()[c], 0.05);
@@ -702,7 +702,7 @@ TEST(PropellerErrors, ReversedFlowAndBadRate) {
     prop.Update(*solver, nullptr, Eigen::Matrix3d::Identity(), 1.0, 1.0, source);
     FAIL() << "expected a ConfigError";
   } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("reversed (U_disk = -0.4999"));
+    EXPECT_THAT(e.what(), HasSubstr("reversed (U_disk = -0.5"));
   }
   try {
     prop.Update(*solver, nullptr, Eigen::Matrix3d::Identity(), 0.0, 1.0, source);

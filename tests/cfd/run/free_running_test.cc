@@ -13,7 +13,13 @@
 //   of the ship file's derivatives, the explicit staggered scheme stops as
 //   diverged within a second of the release;
 // - a restart from a checkpoint after the release continues bit for bit;
-// - bad input around the free body is one clear error.
+// - acceptance 4 (the Wigley part), self-propulsion: towed at 1 m/s with the
+//   body-force propeller of data/ships/wigley.yaml, the rate controller
+//   reaches the point where the carriage force vanishes; the thrust
+//   deduction and the wake come out of the flow (the working propeller
+//   raises the hull's resistance above the towed one; the disk's inflow is
+//   slower than the ship); a restart of the run continues bit for bit;
+// - bad input around the free body and the propeller is one clear error.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -229,6 +235,118 @@ TEST_F(FreeRunning, RestartAfterTheReleaseContinuesBitForBit) {
   for (std::size_t i = 0; i < tail.t.size(); ++i) {
     EXPECT_EQ(tail.u[i], whole.u[110 + i]) << "step " << 111 + i;
     EXPECT_EQ(tail.x0[i], whole.x0[110 + i]) << "step " << 111 + i;
+  }
+}
+
+TEST_F(FreeRunning, WigleySelfPropulsionFindsThePointAndItsThrustDeductionAndWake) {
+  const RunSummary run = Run("sp", CaseText("wigley_self_propulsion"));
+  ASSERT_EQ(run.status, RunSummary::Status::kCompleted) << run.message;
+  std::printf("%s\n", run.message.c_str());
+  const data::H5Reader h(tmp_->path() / "sp/out/history.h5");
+  const double T = h.Read("self_propulsion/thrust").at(0), n = h.Read("self_propulsion/n").at(0);
+  const double t = h.Read("self_propulsion/thrust_deduction").at(0), w = h.Read("self_propulsion/wake_fraction").at(0);
+  const double X_c = h.Read("self_propulsion/carriage_force").at(0);
+  EXPECT_EQ(h.Read("self_propulsion/thrust").units, "N");
+  // At the point: the carriage supplies under 1% of the thrust.
+  EXPECT_LT(std::abs(X_c), 0.01 * T);
+  // The hull's own resistance with the propeller working, over the last 4 s,
+  // exceeds the towed 0.3827 N: the suction of the disk on the stern is the
+  // thrust deduction, computed by the flow.
+  const auto time = h.Read("time").values, hull = h.Read("body/hull_load").values;
+  const auto inflow = h.Read("propeller/inflow").values;
+  double r_hull = 0.0, u_disk = 0.0, u_a = 0.0;
+  int k = 0;
+  for (std::size_t i = 0; i < time.size(); ++i) {
+    if (time[i] <= time.back() - 4.0 + 1e-9) continue;
+    r_hull -= hull[3 * i];
+    u_disk += inflow[5 * i];
+    u_a += inflow[5 * i + 1];
+    ++k;
+  }
+  r_hull /= k;
+  u_disk /= k;
+  u_a /= k;
+  std::printf("Wigley self-propulsion: n %.3f 1/s, T %.4f N, t %.4f, w_T %.4f; hull resistance %.4f N (towed 0.3827 N); "
+              "U_disk %.4f m/s, U_A %.4f m/s\n", n, T, t, w, r_hull, u_disk, u_a);
+  EXPECT_GT(r_hull, 0.3827 * 1.02);
+  EXPECT_NEAR(r_hull, T, 0.01 * T);  // no carriage force: the hull's drag is the thrust
+  EXPECT_GT(t, 0.0);
+  EXPECT_LT(t, 0.3);
+  // The disk accelerates the flow through it (U_disk > U_A), and the hull's
+  // wake slows the inflow below the ship's speed (U_A < 1 m/s, w_T > 0).
+  EXPECT_GT(u_disk, u_a);
+  EXPECT_LT(u_a, 1.0);
+  EXPECT_GT(w, 0.0);
+  EXPECT_LT(w, 0.6);
+}
+
+TEST_F(FreeRunning, SelfPropulsionRestartContinuesBitForBit) {
+  std::string whole = CaseText("wigley_self_propulsion");
+  Replace(whole, "end: 12.0", "end: 6.0");
+  ASSERT_EQ(Run("sp_whole", whole).status, RunSummary::Status::kCompleted);
+  std::string half = CaseText("wigley_self_propulsion");
+  Replace(half, "end: 12.0", "end: 4.0");
+  ASSERT_EQ(Run("sp_half", half).status, RunSummary::Status::kCompleted);
+  ASSERT_EQ(Run("sp_rest", whole, tmp_->path() / "sp_half/out/checkpoint.h5").status, RunSummary::Status::kCompleted);
+  const data::H5Reader a(tmp_->path() / "sp_whole/out/history.h5"), b(tmp_->path() / "sp_rest/out/history.h5");
+  for (const char* name : {"propeller/state", "propeller/inflow", "body/hull_load", "body/constraint_load"}) {
+    const auto x = a.Read(name).values, y = b.Read(name).values;
+    ASSERT_EQ(y.size() * 3, x.size()) << name;  // 50 of 150 steps
+    for (std::size_t i = 0; i < y.size(); ++i) EXPECT_EQ(y[i], x[x.size() - y.size() + i]) << name << " " << i;
+  }
+  EXPECT_EQ(a.Read("self_propulsion/n").at(0), b.Read("self_propulsion/n").at(0));
+}
+
+TEST_F(FreeRunning, BadPropellerInputIsOneClearError) {
+  struct Bad {
+    std::string from, to, message;
+  };
+  // Ship files with the propeller moved or its table broken.
+  const std::vector<Bad> ships = {
+      {"z_P: 0.035", "z_P: 5.0", "contains no cell"},                      // below the domain
+      {"x_P_prime: -0.52", "x_P_prime: -0.48", "touches wall patch 'hull'"},  // cutting the stern
+      {"K_Q_coefficients: [0.07557, -0.05194, -0.00940]", "K_Q_coefficients: [0.07557, 0.05194, -0.00940]",
+       "K_Q"},  // K_Q rising with J
+  };
+  for (const Bad& b : ships) {
+    std::string ship = kelvin::testing::ReadText(ship_);
+    Replace(ship, b.from, b.to);
+    const fs::path file = tmp_->path() / "bad_ship.yaml";
+    std::ofstream(file) << ship;
+    std::string text = CaseText("wigley_self_propulsion");
+    Replace(text, "ship: " + ship_.string(), "ship: " + file.string());
+    try {
+      Run("bad_prop", text);
+      ADD_FAILURE() << b.to << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(b.message)) << b.to;
+    }
+  }
+  // An open-water table that does not reach the operating J (about 0.41):
+  // one error after the start-up, naming the J and the table's range.
+  std::string ship = kelvin::testing::ReadText(ship_);
+  Replace(ship, "K_Q_coefficients: [0.07557, -0.05194, -0.00940]",
+          "open_water: {J: [0.0, 0.1, 0.2, 0.3], K_T: [0.2931, 0.2664, 0.2370, 0.2049], K_Q: [0.0756, 0.0703, 0.0648, 0.0591]}");
+  const fs::path file = tmp_->path() / "short_table.yaml";
+  std::ofstream(file) << ship;
+  std::string text = CaseText("wigley_self_propulsion");
+  Replace(text, "ship: " + ship_.string(), "ship: " + file.string());
+  try {
+    Run("short_table", text);
+    ADD_FAILURE() << "a table ending at J = 0.3 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("outside the table's range [0, 0.3]"));
+    EXPECT_THAT(e.what(), HasSubstr("open_water"));
+  }
+  // A propeller section without a free body.
+  std::string fixed = kelvin::testing::ReadText(kelvin::testing::SourceDir() / "data/cases/captive_cfd/wigley_quick_case.yaml");
+  Replace(fixed, "time: {dt: 0.04}", "time: {dt: 0.04, end: 1.0}");
+  fixed += "motion: {kind: static_drift, speed: 1.0, centre: [0.5, 0, 0]}\npropeller: {rate: {n: 10}}\n";
+  try {
+    Run("prop_fixed", fixed);
+    ADD_FAILURE() << "a propeller without a free body was accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("motion: {kind: free}"));
   }
 }
 
