@@ -97,6 +97,7 @@ data::CaptiveCampaign RunCampaign(const data::CampaignFile& f) {
                       ": RunCampaign runs the mmg solver; cfd campaigns run through cfd/campaign");
   }
   const sim::ShipParameters ship = sim::LoadShip(f.ship_file);
+  sim::RequireManeuveringModel(ship, f.ship_file.string());
   data::CampaignDesign design = f.design;
   design.U = f.speed > 0 ? f.speed : ship.approach_speed;
   if (!(design.U > 0)) {

@@ -224,7 +224,7 @@ double FreeBody::Correct(const PlanarLoad& load, double length) {
     const std::array<double, 3> d = SolveFree(J, residual);
     for (int i = 0; i < 3; ++i) nu_[i] += options_.relaxation * d[i];
     IntegratePose();
-    const double scale = std::max(nominal_speed(), 1e-3);
+    const double scale = nominal_speed() > 0.0 ? nominal_speed() : 1.0;
     change = std::hypot(d[0], d[1], 0.5 * length * d[2]) * options_.relaxation / scale;
   }
   // What the carriage supplies on the held degrees of freedom.

@@ -8,12 +8,14 @@
 //
 // X, Y, N are everything that acts on the body: the water on the hull
 // patches (pressure and viscous, with the free surface), the propeller's
-// thrust and torque reaction, external loads (a tow force, the skin-friction
-// correction F_D). The added masses of the water are in the water's force,
+// thrust (and its yaw moment for a shaft off the centreline; the torque is a
+// roll moment, outside these three degrees of freedom), external loads (a
+// tow force, the skin-friction correction F_D). The added masses of the water are in the water's force,
 // not in these equations; they only enter the coupling below.
 //
 // Time discretization: the solver's scheme, Euler or BDF2 (constant
-// coefficients, as cfd/fv AddDdt), for the velocities and the pose:
+// coefficients, as cfd/fv AddDdt), for the velocities and the pose (the
+// explicit scheme below steps the velocities by forward Euler):
 //   D(q) = (a q_{n+1} - b q_n + c q_{n-1}) / dt,  (a, b, c) = (1, 1, 0) or (3/2, 2, 1/2).
 //
 // Coupling inside the PIMPLE outer loop (kStabilised): the residual of the
@@ -23,8 +25,9 @@
 // an estimate M_a of the water's added masses:
 //   nu^{k+1} = nu^k + omega (a / dt)^{-1} (M + M_a)^{-1} R^k.
 // The water's force responds to an acceleration like -M_a,true a / dt, so the
-// iteration contracts with the factor |M_a - M_a,true| / (M + M_a) (< 1 for
-// any M_a >= (M_a,true - M) / 2); with M_a = 0 it is the plain fixed point,
+// iteration contracts with the factor |M_a - M_a,true| / (M + M_a) (without
+// relaxation; < 1 for any M_a > (M_a,true - M) / 2); with M_a = 0 it is the
+// plain fixed point,
 // whose factor M_a,true / M exceeds 1 for a hull lighter than its added mass
 // (sway and yaw of fine hulls). kExplicit is the naive staggered scheme:
 // nu_{n+1} from the force of the previous step, no correction; it amplifies
@@ -105,8 +108,9 @@ class FreeBody : public BodyKinematics {
   // predicts t_{n+1} (extrapolated, or explicit from the last load).
   void BeginStep(double t_new, double dt);
   // One coupling correction with the load of the latest outer iteration;
-  // returns the velocity change |d nu| scaled by the speed (u, v in m/s, r
-  // times half the ship length through `length`).
+  // returns the velocity change |d nu| (u, v in m/s, r times half the ship
+  // length `length`) over the speed scale (the initial speed, or 1 m/s when
+  // the body starts from rest; the same scale as Diverged).
   double Correct(const PlanarLoad& load, double length);
   // The pose the mesh is placed at during this step (the prediction).
   const Pose& placed() const { return placed_; }

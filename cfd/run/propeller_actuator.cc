@@ -214,7 +214,10 @@ PropellerActuator::Point PropellerActuator::SelfPropulsionPoint() const {
   p.K_Q = p.Q / (rho_ * p.n * p.n * std::pow(D, 5));
   const double R_T = options_.self_propulsion->towed_resistance;
   p.t_deduction = R_T > 0.0 ? 1.0 - (R_T - options_.external_x) / p.T : std::nan("");
-  p.J_T = propeller_.curve().JFromKT(p.K_T);
+  // Thrust identity; a K_T beyond the table (a window not settled yet) has none.
+  const sim::OpenWaterCurve& curve = propeller_.curve();
+  const bool inside = p.K_T <= curve.KT(curve.J_min()) && p.K_T >= curve.KT(curve.J_max());
+  p.J_T = inside ? curve.JFromKT(p.K_T) : std::nan("");
   p.w_T = 1.0 - p.J_T * p.n * D / options_.speed;
   return p;
 }

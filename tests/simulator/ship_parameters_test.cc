@@ -83,6 +83,52 @@ INSTANTIATE_TEST_SUITE_P(
         BadShip{"  Y_v: -0.315\n", "", "missing required key 'hull.Y_v'"},
         BadShip{"Lpp: 7.00 ", "Lpp: seven ", "key 'principal.Lpp' = 'seven': expected a number"}));
 
+// A hull for CFD only (the DTC: principal, geometry and the propeller of the
+// body-force disk): loads without hull and rudder sections, gives the CFD its
+// open-water table, and the MMG model refuses it by name.
+TEST(ShipParametersTest, ACfdOnlyShipLoadsAndTheManeuveringModelRefusesIt) {
+  const auto file = kelvin::testing::SourceDir() / "data/ships/dtc.yaml";
+  const ShipParameters dtc = LoadShip(file);
+  EXPECT_FALSE(dtc.has_hull);
+  EXPECT_FALSE(dtc.has_rudder);
+  EXPECT_FALSE(dtc.propeller.mmg);
+  EXPECT_DOUBLE_EQ(*dtc.propeller.hub_ratio, 0.176);
+  EXPECT_DOUBLE_EQ(*dtc.propeller.z_P, 0.1598);
+  const OpenWaterCurve curve = CfdOpenWater(dtc, file.string());
+  EXPECT_EQ(curve.J.size(), 21u);
+  EXPECT_DOUBLE_EQ(curve.KT(0.6), 0.2250);  // a node of the tutorial's table
+  try {
+    RequireManeuveringModel(dtc, file.string());
+    FAIL() << "the MMG model accepted a ship without hull derivatives";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("hull derivatives"));
+    EXPECT_THAT(e.what(), HasSubstr("a rudder section"));
+    EXPECT_THAT(e.what(), HasSubstr("dtc.yaml"));
+  }
+  EXPECT_NO_THROW(RequireManeuveringModel(testing::Kvlcc2(), "kvlcc2.yaml"));
+}
+
+// Without a table the CFD tabulates the MMG quadratic K_T with the ship
+// file's K_Q quadratic up to K_T = 0; without K_Q it says what is missing.
+TEST(ShipParametersTest, TheCfdOpenWaterCurveComesFromTheQuadratics) {
+  const auto file = kelvin::testing::SourceDir() / "data/ships/wigley.yaml";
+  const ShipParameters wigley = LoadShip(file);
+  const OpenWaterCurve curve = CfdOpenWater(wigley, file.string());
+  const auto& pp = wigley.propeller;
+  for (double J : {0.0, 0.2, 0.4, 0.6}) {
+    EXPECT_NEAR(curve.KT(J), pp.k0 + pp.k1 * J + pp.k2 * J * J, 1e-6) << J;
+    EXPECT_NEAR(curve.KQ(J), (*pp.kq)[0] + (*pp.kq)[1] * J + (*pp.kq)[2] * J * J, 1e-6) << J;
+  }
+  EXPECT_NEAR(curve.KT(curve.J_max()), 0.0, 1e-9);
+  ScopedTempDir tmp;
+  try {
+    CfdOpenWater(LoadShip(Modified(tmp, "x_P_prime: -0.48", "x_P_prime: -0.48")), "kvlcc2.yaml");
+    FAIL() << "a propeller without K_Q was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("K_Q_coefficients"));
+  }
+}
+
 TEST(ShipParametersTest, FroudeScalingKeepsNondimensionalManeuvers) {
   // The same nondimensional model at full scale: distances scale with
   // lambda, times with sqrt(lambda); advance / L is unchanged.

@@ -24,7 +24,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pimple_vs_openfoam import replace_section  # noqa: E402
+from pimple_vs_openfoam import write_or_print  # noqa: E402
 
 NAME = "actuator_disk"
 WAKE = re.compile(r"far_wake grid (\d): (\d+) cells, h = ([\d.]+) D, ([\d.]+) across D, share ([\d.]+), (\d+) steps, "
@@ -84,11 +84,7 @@ def main():
     for g in args.open_water_grids.split(","):
         out = run(args.test, "*RecoversKTAtThreeJ*", {"KELVIN_ACTUATOR_DISK_OPEN_WATER_GRID": g})
         open_water += OPEN.findall(out)
-    text = section(wake, open_water)
-    if args.write:
-        replace_section(args.write, NAME, text)
-    else:
-        print(text)
+    write_or_print(args.write, NAME, section(wake, open_water))
 
 
 if __name__ == "__main__":

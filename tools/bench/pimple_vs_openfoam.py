@@ -156,6 +156,14 @@ def replace_section(path, name, section):
     os.replace(tmp, path)
 
 
+def write_or_print(path, name, section):
+    """Replaces the section in `path` when one is given, else prints it."""
+    if path:
+        replace_section(path, name, section)
+    else:
+        print(section)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--kelvin", required=True, help="path to the kelvin program")

@@ -67,8 +67,10 @@ void RunBridge(BridgeArgs& a) {
   if (!a.derivatives.empty()) {
     set = sim::LoadDerivativeSet(a.derivatives);
     ship.hull = set->hull;
+    ship.has_hull = true;
     ship.Validate(a.derivatives);
   }
+  sim::RequireManeuveringModel(ship, a.ship_file);
   const bridge::DerivativeAssessment assessment = bridge::AssessDerivatives(ship, set, a.require_checked);
   if (assessment.status == bridge::DerivativeStatus::kChecked) {
     spdlog::info("{}", assessment.message);

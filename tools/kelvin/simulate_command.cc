@@ -41,9 +41,11 @@ void RunSimulate(const SimulateArgs& a) {
   if (!a.derivatives.empty()) {
     const sim::DerivativeSet set = sim::LoadDerivativeSet(a.derivatives);
     ship.hull = set.hull;
+    ship.has_hull = true;
     ship.Validate(a.derivatives);
     spdlog::info("hull derivatives and added masses from {} ({})", a.derivatives, set.name);
   }
+  sim::RequireManeuveringModel(ship, a.ship_file);
   if (a.scale == "full") {
     ship = sim::ScaleShip(ship, ship.scale, a.friction_correction);
     ship.scale_name = "full scale";

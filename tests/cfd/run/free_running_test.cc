@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -242,6 +243,11 @@ TEST_F(FreeRunning, WigleySelfPropulsionFindsThePointAndItsThrustDeductionAndWak
   const RunSummary run = Run("sp", CaseText("wigley_self_propulsion"));
   ASSERT_EQ(run.status, RunSummary::Status::kCompleted) << run.message;
   std::printf("%s\n", run.message.c_str());
+  // The report test (tools/plot_self_propulsion.py) draws this run.
+  if (const char* dir = std::getenv("KELVIN_REPORT_DIR")) {
+    fs::create_directories(dir);
+    fs::copy_file(tmp_->path() / "sp/out/history.h5", fs::path(dir) / "history.h5", fs::copy_options::overwrite_existing);
+  }
   const data::H5Reader h(tmp_->path() / "sp/out/history.h5");
   const double T = h.Read("self_propulsion/thrust").at(0), n = h.Read("self_propulsion/n").at(0);
   const double t = h.Read("self_propulsion/thrust_deduction").at(0), w = h.Read("self_propulsion/wake_fraction").at(0);
