@@ -1,6 +1,7 @@
 #include "cfd/run/resistance_monitor.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include "cfd/freesurface/linearized_free_surface.h"
 #include "cfd/freesurface/wave_analysis.h"
+#include "data/reference/friction_lines.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 
@@ -26,6 +28,7 @@ ResistanceMonitor::ResistanceMonitor(const Case& c)
                                         : std::numeric_limits<double>::quiet_NaN()) {
   KELVIN_CHECK(hull_ >= 0, "a hull patch the loader resolved");
   if (free_surface_) g_ = free_surface_->options().g;
+  turbulent_ = c.solver->turbulence() != nullptr;
   steady_.window = c.settings.time.steady ? c.settings.time.steady->criterion.window : 0.0;
   steady_.release_time = std::numeric_limits<double>::quiet_NaN();
 }
@@ -145,8 +148,16 @@ std::string ResistanceMonitor::WriteSplit(data::H5Writer& w) const {
     Scalar(w, "Fn", fn, "1", "Froude number U / sqrt(g L)");
     summary += fmt::format("; Fn = {:.4f}", fn);
     if (nu_ > 0.0) {
-      Scalar(w, "Re", reference_.speed * reference_.length / nu_, "1", "Reynolds number U L / nu");
-      summary += fmt::format(", Re = {:.4g}", reference_.speed * reference_.length / nu_);
+      const double re = reference_.speed * reference_.length / nu_;
+      Scalar(w, "Re", re, "1", "Reynolds number U L / nu");
+      summary += fmt::format(", Re = {:.4g}", re);
+      if (turbulent_) {
+        // A turbulent hull's friction lies near the ITTC-57 line (CFD and
+        // model tests give about 1.0 to 1.1 of it); well outside, R_F and
+        // what is built on it are wrong, usually through the wall cells.
+        Scalar(w, "C_F_over_ITTC57", FrictionRatio(), "1", "C_F / C_F0, C_F0 = 0.075 / (log10 Re - 2)^2 (ITTC 1957)");
+        summary += fmt::format("; C_F / C_F0(ITTC-57) = {:.3f}", FrictionRatio());
+      }
     }
   }
   return summary;
@@ -198,7 +209,25 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Pi
     WriteWaves(w, *free_surface_, hull_, options_);
   }
   w.Commit();
-  return summary;
+  return summary + FrictionWarning();
+}
+
+std::string ResistanceMonitor::FrictionWarning() const {
+  if (!turbulent_ || !(reference_.length > 0.0) || !(nu_ > 0.0)) return "";
+  const double ratio = FrictionRatio();
+  if (ratio >= kFrictionLow && ratio <= kFrictionHigh) return "";
+  const std::string warning = fmt::format(
+      "WARNING: the friction on '{}' is {:.2f} of the ITTC-57 line at Re = {:.3g} (a turbulent hull gives about "
+      "1.0-1.1; outside [{}, {}] it is not a hull's boundary layer): R_F, R_T and what is built on them are off; "
+      "check the hull y+ and the prism layers of the grid",
+      options_.hull_patch, ratio, reference_.speed * reference_.length / nu_, kFrictionLow, kFrictionHigh);
+  spdlog::warn("{}", warning);
+  return "\n  " + warning;
+}
+
+double ResistanceMonitor::FrictionRatio() const {
+  const double re = reference_.speed * reference_.length / nu_;
+  return rows_.back()[2] / DynamicForce() / data::Ittc57FrictionCoefficient(re);
 }
 
 }  // namespace kelvin::cfd

@@ -48,6 +48,12 @@ class ResistanceMonitor final : public Monitor {
   // The split, its coefficients and the steady criterion; the wave-making
   // part against the double body. Each returns its part of the summary.
   std::string WriteSplit(data::H5Writer& writer) const;
+  // C_F / C_F0(ITTC-57) at the last step (turbulent cases with
+  // reference.length), and a loud warning line when it lies outside
+  // [kFrictionLow, kFrictionHigh] (empty otherwise).
+  double FrictionRatio() const;
+  std::string FrictionWarning() const;
+  static constexpr double kFrictionLow = 0.9, kFrictionHigh = 1.2;
   std::string WriteWaveMaking(data::H5Writer& writer) const;
   // 0.5 rho S U^2 (N): the scale of the coefficients.
   double DynamicForce() const { return 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed; }
@@ -55,6 +61,7 @@ class ResistanceMonitor final : public Monitor {
   ResistanceOptions options_;
   CaseReference reference_;
   double rho_, nu_, g_ = 9.81;
+  bool turbulent_ = false;  // a RANS case: its friction is judged against ITTC-57
   std::filesystem::path file_;
   const LinearizedFreeSurface* free_surface_;
   int hull_ = -1;

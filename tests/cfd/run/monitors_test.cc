@@ -126,6 +126,39 @@ TEST(ResistanceMonitor, SplitAndCoefficientsOfAGivenForceField) {
   EXPECT_EQ(pf.at(0, 1), 0.3);
 }
 
+// A turbulent case's friction is judged against ITTC-57: the ratio is in
+// resistance.h5, and well off the line (0.6, as on a grid whose prism layers
+// collapsed) the report says so loudly; near it (1.0) it does not.
+TEST(ResistanceMonitor, FrictionFarFromIttc57IsALoudWarning) {
+  for (double ratio : {0.6, 1.0}) {
+    kelvin::testing::ScopedTempDir tmp;
+    const Case c = Load("reference: {speed: 2, direction: [-1, 0, 0], area: 3, length: 1.5}\n"
+                        "turbulence: {model: kOmegaSST, inflow: {intensity: 0.01, viscosity_ratio: 5, "
+                        "reference_speed: 2}}\ntime: {dt: 0.1, end: 1}\noutput: {directory: " +
+                            tmp.path().string() + ", forces: [obstacle]}\nresistance: {hull: obstacle}\n",
+                        "noSlip");
+    ResistanceMonitor monitor(c);
+    const int hull = c.mesh->FindPatch("obstacle");
+    const double n = c.mesh->patches()[hull].size;
+    const double q = 0.5 * 998.0 * 3.0 * 2.0 * 2.0, re = 2.0 * 1.5 / 1.0e-2;
+    const double c_f0 = 0.075 / std::pow(std::log10(re) - 2.0, 2);
+    StepForces forces;
+    forces.Set(hull, Uniform(*c.mesh, hull, Vector3(-1, 0, 0), Vector3(-ratio * c_f0 * q / n, 0, 0)));
+    StepSummary step;
+    SteadyStatus steady;
+    History history;
+    StepRecord record{step, forces, steady};
+    record.last = true;
+    monitor.AfterStep(*c.solver, record, history);
+    const std::vector<std::string> report = monitor.Finish(*c.solver);
+    ASSERT_EQ(report.size(), 1u);
+    EXPECT_NEAR(data::H5Reader(tmp.path() / "resistance.h5").Read("C_F_over_ITTC57").at(0), ratio, 1e-12);
+    EXPECT_EQ(report[0].find("WARNING: the friction on 'obstacle' is 0.60 of the ITTC-57 line") != std::string::npos,
+              ratio < 0.9)
+        << report[0];
+  }
+}
+
 // A monitor asked for on a case that cannot provide it is one error naming the key.
 TEST(ResistanceMonitor, CasesThatCannotProvideItAreErrors) {
   auto message = [](const std::string& extra, const std::string& wall) {
