@@ -59,6 +59,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   o.checkpoint_interval = c.settings.output.checkpoint_interval;
   o.history = c.settings.output.directory / "history.h5";
   o.progress = options.progress;
+  o.stop_requested = options.stop_requested;
   const RunDriverSummary d = RunDriver(c, monitors, o);
 
   RunSummary summary;
@@ -70,8 +71,9 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   summary.outer_iterations = d.outer_iterations;
   summary.steady_converged = d.steady.settled;
   summary.steady_change = d.steady.force_change;
-  if (d.status == RunDriverSummary::Status::kDiverged) {
-    summary.status = RunSummary::Status::kDiverged;
+  if (d.status == RunDriverSummary::Status::kDiverged || d.status == RunDriverSummary::Status::kInterrupted) {
+    summary.status = d.status == RunDriverSummary::Status::kDiverged ? RunSummary::Status::kDiverged
+                                                                     : RunSummary::Status::kInterrupted;
     summary.message = d.message;
     return summary;
   }

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "cfd/run/run_driver.h"
@@ -19,10 +20,14 @@ struct RunOptions {
   std::filesystem::path output_override;     // replaces output.directory when set
   std::filesystem::path poly_mesh_override;  // replaces mesh.poly_mesh when set (grid families)
   bool progress = true;
+  // Polled after each step (RunDriverOptions::stop_requested): `kelvin run`
+  // passes the SIGTERM / SIGINT it caught.
+  std::function<int()> stop_requested;
 };
 
 struct RunSummary {
-  enum class Status { kCompleted, kDiverged };
+  // kInterrupted: a stop was requested; the message names the checkpoint.
+  enum class Status { kCompleted, kDiverged, kInterrupted };
   Status status = Status::kCompleted;
   std::string message;
   int steps = 0;

@@ -247,7 +247,18 @@ RunDriverSummary Loop::Run() {
     history_.NewRow();
     core_.Fill(history_, *c_.mesh, record, c_.force_patches);
     for (Monitor* m : monitors_) m->AfterStep(solver_, record, history_);
-    if (CheckpointDue(record.last)) Checkpoint();
+    const bool checkpointed = CheckpointDue(record.last);
+    if (checkpointed) Checkpoint();
+    if (const int signal = options_.stop_requested ? options_.stop_requested() : 0; signal != 0) {
+      if (!checkpointed && !options_.checkpoint.empty()) Checkpoint();
+      summary_.status = RunDriverSummary::Status::kInterrupted;
+      summary_.message = fmt::format(
+          "interrupted by signal {} after step {} (t = {:.6g} s); {}", signal, s.step, s.time,
+          options_.checkpoint.empty() ? std::string("no checkpoint (none was asked for)")
+                                      : fmt::format("checkpoint {} (continue with --restart {})",
+                                                    options_.checkpoint.string(), options_.checkpoint.string()));
+      break;
+    }
     progress.Update(i + 1, fmt::format("step {} t={:.4g} Co={:.3g} U={:.2e} p={:.2e}", s.step, s.time,
                                        s.courant_max, s.initial_residual_U, s.initial_residual_p));
     if (time_control_.settled()) break;
@@ -255,7 +266,10 @@ RunDriverSummary Loop::Run() {
   solver_.SetOuterIterationHook(nullptr);
   WriteHistory();
   const bool completed = summary_.status == RunDriverSummary::Status::kCompleted;
-  progress.Finish(completed ? "done" : summary_.status == RunDriverSummary::Status::kDiverged ? "diverged" : "stopped");
+  progress.Finish(completed                                                       ? "done"
+                  : summary_.status == RunDriverSummary::Status::kDiverged    ? "diverged"
+                  : summary_.status == RunDriverSummary::Status::kInterrupted ? "interrupted"
+                                                                              : "stopped");
   summary_.time = solver_.time();
   summary_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary_.steady = time_control_.status();

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 
@@ -30,12 +31,17 @@ struct RunDriverOptions {
   bool checkpoint_at_end = true;     // also on the last step
   std::filesystem::path history;     // history.h5 (empty: none), written with each checkpoint and at the end
   long step_budget = 0;              // > 0: stop after this many steps, as if killed (tests)
+  // Polled after each step: a signal number (SIGTERM, SIGINT) asks for a
+  // clean stop: a checkpoint (when `checkpoint` is set) and the history,
+  // then kInterrupted. Null or 0: run on.
+  std::function<int()> stop_requested;
   bool progress = true;
   std::string label = "kelvin run";
 };
 
 struct RunDriverSummary {
-  enum class Status { kCompleted, kDiverged, kStopped };  // kStopped: the step budget ran out
+  // kStopped: the step budget ran out; kInterrupted: stop_requested said so.
+  enum class Status { kCompleted, kDiverged, kStopped, kInterrupted };
   Status status = Status::kCompleted;
   std::string message;  // on divergence: where and what, with the last good checkpoint
   int steps = 0;        // steps computed in this call

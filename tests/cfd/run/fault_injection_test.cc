@@ -1,0 +1,192 @@
+// `kelvin run` killed and stopped (issue #24's fault injection, on a
+// free-running case: the Wigley surge decay of data/cases/free_running/ on
+// the quickstart grid, checkpoints every 5 steps, 160 steps):
+// - SIGKILL at 12 points (random times from a fixed seed, and every third
+//   kill the moment a checkpoint's temporary file appears, i.e. during its
+//   write), each followed by a restart from the checkpoint left behind: the
+//   last run's final checkpoint is bit-identical to that of an uninterrupted
+//   run, and after every kill the files under their final names are whole
+//   (they open and hold the solver state);
+// - SIGTERM stops the run after the step in progress with a checkpoint and
+//   exit status 128 + 15, and the restart from it ends on the same state.
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fcntl.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "data/schema/h5_file.h"
+#include "tests/test_utilities/test_utilities.h"
+
+extern char** environ;
+
+namespace kelvin::cfd {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Process {
+ public:
+  explicit Process(const std::vector<std::string>& argv, const fs::path& log) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    EXPECT_EQ(posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+  }
+  // Exit status, or -signal; nullopt while running.
+  std::optional<int> Poll() {
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) != pid_) return std::nullopt;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+  }
+  int Wait() {
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+  }
+  void Signal(int signal) const { kill(pid_, signal); }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+bool WriteInProgress(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (e.path().filename().string().rfind("checkpoint.h5.tmp.", 0) == 0) return true;
+  }
+  return false;
+}
+
+// The solver state of a checkpoint: every array and the step.
+std::vector<std::vector<double>> State(const fs::path& checkpoint) {
+  const data::H5Reader r(checkpoint);
+  std::vector<std::vector<double>> s = {r.Read("U").values, r.Read("p").values, r.Read("phi").values,
+                                        {r.NumberAttribute("/", "step"), r.NumberAttribute("/", "time")}};
+  for (const char* scalar : {"run_free_body_2", "run_free_body_8", "run_free_body_14"}) {
+    s.push_back({r.NumberAttribute("/", scalar)});
+  }
+  return s;
+}
+
+class FaultInjection : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const fs::path src = kelvin::testing::SourceDir() / "data";
+    kelvin_ = (kelvin::testing::ToolsDir() / "kelvin").string();
+    const auto r = kelvin::testing::RunCommand(kelvin_ + " mesh " +
+                                               (src / "cases/captive_cfd/wigley_quick_mesh.yaml").string() + " -o " +
+                                               (tmp_ / "grid").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::string text = kelvin::testing::ReadText(src / "cases/free_running/wigley_surge_decay.yaml");
+    auto replace = [&](const std::string& from, const std::string& to) {
+      const auto at = text.find(from);
+      ASSERT_NE(at, std::string::npos) << from;
+      text.replace(at, from.size(), to);
+    };
+    replace("ship: ../../ships/wigley.yaml", "ship: " + (src / "ships/wigley.yaml").string());
+    replace("../../../build/grids/wigley_captive_quick/constant/polyMesh", (tmp_ / "grid/constant/polyMesh").string());
+    replace("checkpoint_interval: 50", "checkpoint_interval: 5");
+    case_ = tmp_ / "case.yaml";
+    std::ofstream(case_) << text;
+  }
+  std::vector<std::string> Args(const fs::path& out, bool restart) const {
+    std::vector<std::string> a = {kelvin_, "run", case_.string(), "--no-progress", "-o", out.string()};
+    if (restart) {
+      a.push_back("--restart");
+      a.push_back((out / "checkpoint.h5").string());
+    }
+    return a;
+  }
+
+  kelvin::testing::ScopedTempDir tmp_;
+  std::string kelvin_;
+  fs::path case_;
+};
+
+TEST_F(FaultInjection, KilledRunsRestartToTheStateOfAnUninterruptedRun) {
+  const fs::path whole = tmp_ / "whole";
+  ASSERT_EQ(Process(Args(whole, false), tmp_ / "whole.log").Wait(), 0);
+  const auto reference = State(whole / "checkpoint.h5");
+
+  const fs::path out = tmp_ / "killed";
+  fs::create_directories(out);
+  std::mt19937 rng(20261201);
+  std::uniform_real_distribution<double> delay(0.3, 1.5);
+  int kills = 0, during_write = 0, status = -1;
+  for (int attempt = 0; attempt < 60; ++attempt) {
+    const bool restart = fs::exists(out / "checkpoint.h5");
+    Process p(Args(out, restart), tmp_ / "killed.log");
+    const bool at_write = kills < 12 && kills % 3 == 2;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(delay(rng));
+    std::optional<int> done;
+    while (!(done = p.Poll())) {
+      if (kills < 12 && (at_write ? WriteInProgress(out) : std::chrono::steady_clock::now() >= deadline)) {
+        p.Signal(SIGKILL);
+        p.Wait();
+        ++kills;
+        if (at_write) ++during_write;
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(at_write ? 1 : 10));
+    }
+    if (done) {
+      status = *done;
+      break;
+    }
+    // Whatever carries a final name is whole.
+    if (fs::exists(out / "checkpoint.h5")) {
+      EXPECT_NO_THROW(State(out / "checkpoint.h5")) << "after kill " << kills;
+    }
+    if (fs::exists(out / "history.h5")) {
+      EXPECT_NO_THROW(data::H5Reader(out / "history.h5").Read("time")) << "after kill " << kills;
+    }
+  }
+  std::printf("fault injection: %d SIGKILLs (%d during a checkpoint write), then the run completed with status %d\n",
+              kills, during_write, status);
+  ASSERT_EQ(status, 0) << kelvin::testing::ReadText(tmp_ / "killed.log");
+  EXPECT_GE(kills, 12);
+  EXPECT_GE(during_write, 3);
+  const auto final_state = State(out / "checkpoint.h5");
+  ASSERT_EQ(final_state.size(), reference.size());
+  for (std::size_t k = 0; k < reference.size(); ++k) {
+    EXPECT_EQ(final_state[k], reference[k]) << "array " << k << " differs from the uninterrupted run";
+  }
+}
+
+TEST_F(FaultInjection, SigtermStopsWithACheckpointAndTheRestartEndsOnTheSameState) {
+  const fs::path whole = tmp_ / "whole";
+  ASSERT_EQ(Process(Args(whole, false), tmp_ / "whole.log").Wait(), 0);
+  const fs::path out = tmp_ / "term";
+  Process p(Args(out, false), tmp_ / "term.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  p.Signal(SIGTERM);
+  const int status = p.Wait();
+  const std::string log = kelvin::testing::ReadText(tmp_ / "term.log");
+  ASSERT_EQ(status, 128 + SIGTERM) << log;
+  EXPECT_NE(log.find("interrupted by signal 15"), std::string::npos) << log;
+  EXPECT_NE(log.find("--restart"), std::string::npos) << log;
+  const auto stopped = State(out / "checkpoint.h5");
+  EXPECT_LT(stopped[3][0], 160.0);  // stopped before the end
+  ASSERT_EQ(Process(Args(out, true), tmp_ / "rest.log").Wait(), 0) << kelvin::testing::ReadText(tmp_ / "rest.log");
+  EXPECT_EQ(State(out / "checkpoint.h5"), State(whole / "checkpoint.h5"));
+}
+
+}  // namespace
+}  // namespace kelvin::cfd
