@@ -11,6 +11,7 @@
 #include "cfd/freesurface/linearized_free_surface.h"
 #include "cfd/io/checkpoint.h"
 #include "data/report/progress.h"
+#include "data/schema/errors.h"
 
 namespace kelvin::cfd {
 namespace {
@@ -159,6 +160,7 @@ class Loop {
   std::vector<int> patches_;
   StepForces forces_;
   RunDriverSummary summary_;
+  int last_checkpoint_step_ = -1;  // step of this run's last checkpoint (-1: none yet)
 };
 
 void Loop::Start() {
@@ -198,9 +200,19 @@ void Loop::Checkpoint() {
   for (Monitor* m : monitors_) m->BeforeCheckpoint(solver_);
   CheckpointScalars scalars = time_control_.CheckpointScalars();
   for (Monitor* m : monitors_) m->AddCheckpointScalars(scalars);
-  WriteCheckpoint(options_.checkpoint, solver_, scalars);
-  summary_.last_checkpoint = options_.checkpoint;
-  WriteHistory();
+  try {
+    WriteCheckpoint(options_.checkpoint, solver_, scalars);
+    summary_.last_checkpoint = options_.checkpoint;
+    last_checkpoint_step_ = solver_.step();
+    WriteHistory();
+  } catch (const DataFileError& e) {
+    // Written atomically: the file under its name is still the last good one.
+    throw DataFileError(fmt::format(
+        "the run stopped at step {}: {}; {}", solver_.step(), e.what(),
+        last_checkpoint_step_ >= 0
+            ? fmt::format("the checkpoint of step {} is kept ({})", last_checkpoint_step_, options_.checkpoint.string())
+            : std::string("no checkpoint of this run had been written")));
+  }
 }
 
 RunDriverSummary Loop::Run() {

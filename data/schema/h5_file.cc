@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cstring>
 #include <numeric>
 
@@ -17,6 +18,10 @@ namespace {
 // Silences HDF5's own error stack printing; we report errors ourselves.
 void QuietHdf5() {
   static const bool once = [] {
+    // Every file is closed by its owner (H5Handle); HDF5's own close at exit
+    // would only revisit a file whose flush failed (a full disk), and its
+    // half-closed state crashes the library there (HDF5 1.10, Debian 12).
+    H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     return true;
   }();
@@ -125,8 +130,12 @@ H5Writer::H5Writer(fs::path target, Mode mode) : target_(std::move(target)) {
 
 H5Writer::~H5Writer() {
   if (!committed_) {
-    file_.Reset();
+    // Empty the temporary file first: on a full disk the close must still
+    // find room for its metadata, or HDF5 keeps a half-closed file that
+    // crashes the library's exit.
     std::error_code ec;
+    fs::resize_file(tmp_, 0, ec);
+    file_.Reset();
     fs::remove(tmp_, ec);
   }
 }
@@ -277,7 +286,10 @@ void H5Writer::SetAttribute(const std::string& object, const std::string& name, 
 void H5Writer::Commit() {
   KELVIN_CHECK(!committed_, "H5Writer committed twice");
   Flush();
-  if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) Fail(target_, "", "flush failed");
+  errno = 0;
+  if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) {
+    Fail(target_, "", errno != 0 ? std::string("flush failed: ") + std::strerror(errno) : "flush failed");
+  }
   file_.Reset();
   CommitFile(tmp_, target_);
   committed_ = true;

@@ -8,7 +8,10 @@
 //   run, and after every kill the files under their final names are whole
 //   (they open and hold the solver state);
 // - SIGTERM stops the run after the step in progress with a checkpoint and
-//   exit status 128 + 15, and the restart from it ends on the same state.
+//   exit status 128 + 15, and the restart from it ends on the same state;
+// - a full disk (a 1.8 MB tmpfs: room for one checkpoint, not for its
+//   successor beside it) stops the run with one error that names the file,
+//   the cause and the checkpoint kept, which still opens at its step.
 #include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -186,6 +189,27 @@ TEST_F(FaultInjection, SigtermStopsWithACheckpointAndTheRestartEndsOnTheSameStat
   EXPECT_LT(stopped[3][0], 160.0);  // stopped before the end
   ASSERT_EQ(Process(Args(out, true), tmp_ / "rest.log").Wait(), 0) << kelvin::testing::ReadText(tmp_ / "rest.log");
   EXPECT_EQ(State(out / "checkpoint.h5"), State(whole / "checkpoint.h5"));
+}
+
+TEST_F(FaultInjection, AFullDiskIsOneClearErrorAndKeepsTheLastCheckpoint) {
+  const fs::path disk = tmp_ / "disk";
+  fs::create_directories(disk);
+  if (kelvin::testing::RunCommand("mount -t tmpfs -o size=1800k tmpfs " + disk.string()).exit_code != 0) {
+    GTEST_SKIP() << "cannot mount a tmpfs here (needs root): the full-disk case is not exercised";
+  }
+  const fs::path out = disk / "out";
+  const int status = Process(Args(out, false), tmp_ / "full.log").Wait();
+  const std::string log = kelvin::testing::ReadText(tmp_ / "full.log");
+  const auto kept = fs::exists(out / "checkpoint.h5") ? State(out / "checkpoint.h5") : decltype(State({})){};
+  std::error_code ec;
+  const bool leftovers = WriteInProgress(out);
+  kelvin::testing::RunCommand("umount " + disk.string());
+  EXPECT_EQ(status, 1) << log;
+  EXPECT_NE(log.find("No space left on device"), std::string::npos) << log;
+  EXPECT_NE(log.find("the checkpoint of step 5 is kept"), std::string::npos) << log;
+  ASSERT_FALSE(kept.empty()) << "no checkpoint kept";
+  EXPECT_EQ(kept[3][0], 5.0);
+  EXPECT_FALSE(leftovers) << "a temporary file was left beside the checkpoint";
 }
 
 }  // namespace
