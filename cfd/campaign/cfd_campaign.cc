@@ -511,7 +511,20 @@ bool RunSerial(Context& ctx, std::vector<Job>& jobs, CampaignRunSummary& summary
   for (Job& j : jobs) {
     if (j.state == Job::State::kDone) continue;
     j.state = Job::State::kRunning;
-    const bool finished = ExecuteJob(ctx, j);
+    bool finished = false;
+    try {
+      finished = ExecuteJob(ctx, j);
+    } catch (const InputError& e) {
+      // A run that diverges (or cannot be read) fails alone: the others run,
+      // and the campaign names it at the end (ThrowIfRunsFailed).
+      j.state = Job::State::kFailed;
+      j.message = e.what();
+      const std::string prefix = "run '" + j.name + "' ";
+      if (j.message.rfind(prefix, 0) == 0) j.message.erase(0, prefix.size());
+      summary.steps_computed = ctx.computed;
+      progress.Print(true);
+      continue;
+    }
     summary.steps_computed = ctx.computed;
     if (!finished) {
       j.state = Job::State::kLeft;
@@ -685,6 +698,7 @@ CampaignRunSummary RunCfdCampaign(const data::CampaignFile& f, const CampaignRun
   if (!options.only_run.empty()) return RunOnly(ctx, options.only_run, jobs, summary);
   if (n_jobs <= 1) {
     if (!RunSerial(ctx, jobs, summary, progress)) return summary;  // stopped by the step budget
+    ThrowIfRunsFailed(f, jobs);
   } else {
     RunWorkers(f, options, n_jobs, jobs, summary, progress);
   }

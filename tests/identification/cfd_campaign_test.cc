@@ -120,6 +120,28 @@ TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
   ExpectSameFile(a.output, b3.output);
 }
 
+// A run that diverges (pure sway at v' = 1e6: the Courant number runs away)
+// fails alone: the campaign finishes the others, keeps their results and
+// names the failed run with the driver's divergence message.
+TEST(CfdCampaign, ADivergingRunFailsAloneAndIsNamed) {
+  kelvin::testing::ScopedTempDir tmp;
+  std::string text = ReadText(WriteCampaign(tmp / "c"));
+  text.replace(text.find("pure_sway_v_prime: [0.15]"), 25, "pure_sway_v_prime: [0.15, 1.0e6]");
+  std::ofstream(tmp / "c/campaign.yaml") << text;
+  try {
+    RunCfdCampaign(data::LoadCampaignFile(tmp / "c/campaign.yaml"), Quiet());
+    FAIL() << "a diverging run went unreported";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("runs failed:\n  run 'sway_v1000000.000': diverged at step"), std::string::npos) << m;
+    EXPECT_NE(m.find("last good checkpoint"), std::string::npos) << m;
+    EXPECT_EQ(m.find("sway_v0.150"), std::string::npos) << m;  // the others did not fail
+  }
+  for (const char* run : {"drift_+0.0deg", "drift_+5.0deg", "drift_-5.0deg", "sway_v0.150", "yaw_r0.150"}) {
+    EXPECT_TRUE(fs::exists(tmp / "c/runs" / run / "result.h5")) << run << " was not finished";
+  }
+}
+
 TEST(CfdCampaign, SurvivesSigkill) {
   ScopedTempDir tmp;
   const CampaignRunSummary a =
