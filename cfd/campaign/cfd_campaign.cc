@@ -30,6 +30,13 @@ extern char** environ;
 namespace kelvin::cfd {
 namespace {
 
+// A run whose flow diverged: it fails alone in a serial campaign.
+class RunDivergedError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
@@ -360,7 +367,7 @@ bool ExecuteJob(Context& ctx, Job& job) {
   o.progress = false;
   const RunDriverSummary d = RunDriver(c, monitors, o);
   if (d.status == RunDriverSummary::Status::kDiverged) {
-    throw InputError(fmt::format("run '{}' {}", job.name, d.message));
+    throw RunDivergedError(fmt::format("run '{}' {}", job.name, d.message));
   }
   if (d.status == RunDriverSummary::Status::kStopped) return false;
   job.step = c.solver->step();
@@ -514,9 +521,9 @@ bool RunSerial(Context& ctx, std::vector<Job>& jobs, CampaignRunSummary& summary
     bool finished = false;
     try {
       finished = ExecuteJob(ctx, j);
-    } catch (const InputError& e) {
-      // A run that diverges (or cannot be read) fails alone: the others run,
-      // and the campaign names it at the end (ThrowIfRunsFailed).
+    } catch (const RunDivergedError& e) {
+      // A run that diverges fails alone: the others run, and the campaign
+      // names it at the end (ThrowIfRunsFailed). Bad input stops it all.
       j.state = Job::State::kFailed;
       j.message = e.what();
       const std::string prefix = "run '" + j.name + "' ";
