@@ -1,0 +1,229 @@
+// The bridge's browser display over HTTP, read with cpp-httplib's client
+// and Python's json module: the state stream carries the LCM states exactly;
+// the page that holds the helm steers (through the same helm filter and
+// statistics as LCM helm commands) and every other page is refused; malformed
+// and oversized requests are dropped and counted; the server is bound to
+// loopback by default; the page and its script are served by kelvin itself.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bridge/bridge.h"
+#include "bridge/display_feed.h"
+#include "bridge/http_display.h"
+#include "bridge/listener.h"
+#include "data/schema/errors.h"
+#include "simulator/mmg/ship_parameters.h"
+#include "tests/test_utilities/test_utilities.h"
+// Last: httplib.h brings <resolv.h>, whose _res macro breaks Eigen's headers.
+#include <httplib.h>
+
+namespace kelvin::bridge {
+namespace {
+
+using ::testing::HasSubstr;
+constexpr double kDeg = M_PI / 180.0;
+
+// A bridge on memq:// running on its own thread, with the display on a free
+// loopback port. The LCM states are read once the bridge has stopped.
+class RunningBridge {
+ public:
+  RunningBridge(BridgeOptions o, HttpDisplayOptions h = {}) : lcm_("memq://") {
+    ship_ = sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
+    bridge_ = std::make_unique<Bridge>(ship_, o, lcm_);
+    listener_ = std::make_unique<Listener>(lcm_, "KELVIN");
+    DisplayInfo info;
+    info.ship = ship_.name;
+    info.script = o.script;
+    info.derivatives = "a published reference set, not checked against this project's CFD";
+    info.helm_source = kPageHelmSource;
+    h.port = 0;
+    display_ = std::make_unique<HttpDisplay>(feed_, info, h);
+    bridge_->SetDisplay(&feed_);
+    thread_ = std::thread([this] { summary_ = bridge_->Run(); });
+  }
+  ~RunningBridge() { Stop(); }
+  void Stop() {
+    bridge_->RequestStop();
+    if (thread_.joinable()) thread_.join();
+  }
+  // Waits for the run to end by itself.
+  void Join() {
+    if (thread_.joinable()) thread_.join();
+  }
+  const std::vector<kelvin::ship_state_t>& States() {
+    while (lcm_.handleTimeout(0) > 0) {
+    }
+    return listener_->states();
+  }
+  httplib::Client Client() const { return httplib::Client("127.0.0.1", display_->port()); }
+  const HttpDisplay& display() const { return *display_; }
+  const BridgeSummary& summary() const { return summary_; }
+
+ private:
+  lcm::LCM lcm_;
+  sim::ShipParameters ship_;
+  std::unique_ptr<Bridge> bridge_;
+  std::unique_ptr<Listener> listener_;
+  DisplayFeed feed_;
+  std::unique_ptr<HttpDisplay> display_;
+  BridgeSummary summary_;
+  std::thread thread_;
+};
+
+BridgeOptions HelmOptions() {
+  BridgeOptions o;
+  o.rate = 20;
+  o.speedup = 1;
+  o.duration = 600;  // stopped by the test
+  return o;
+}
+
+// Form fields as a body.
+std::string Form(const std::string& token, const std::string& rudder, const std::string& rps) {
+  return "token=" + token + "&rudder=" + rudder + "&rps=" + rps;
+}
+
+std::string Claim(httplib::Client& cli) {
+  const auto r = cli.Post("/helm/claim", "", "application/x-www-form-urlencoded");
+  if (!r || r->status != 200) return "";
+  const std::string key = R"("token":")";
+  const std::size_t at = r->body.find(key);
+  if (at == std::string::npos) return "";
+  return r->body.substr(at + key.size(), 32);
+}
+
+// A Python expression of the /state document `d`, read by Python's json module.
+std::string StateField(httplib::Client& cli, const std::string& path) {
+  const auto r = cli.Get("/state");
+  if (!r || r->status != 200) return "";
+  const testing::ScopedTempDir dir;
+  std::ofstream(dir / "state.json") << r->body;
+  const auto py = testing::RunCommand("/usr/bin/python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(" +
+                                      path + ")' " + (dir / "state.json").string());
+  return py.exit_code == 0 ? py.output.substr(0, py.output.find('\n')) : "error: " + py.output;
+}
+
+TEST(HttpDisplay, TheStateStreamCarriesTheLcmStatesExactly) {
+  BridgeOptions o;
+  o.rate = 20;
+  o.speedup = 10;
+  o.duration = 30;  // 3 s of wall-clock time
+  o.script = "zigzag:20/20:stbd";
+  RunningBridge run(o);
+  httplib::Client cli = run.Client();
+  std::string stream;
+  int events = 0;
+  const auto r = cli.Get("/stream", [&](const char* data, std::size_t n) {
+    stream.append(data, n);
+    events = static_cast<int>(std::count(stream.begin(), stream.end(), '\n')) / 2;
+    return events < 20;
+  });
+  run.Join();
+  const auto& states = run.States();
+  ASSERT_EQ(states.size(), 601u);
+
+  const testing::ScopedTempDir dir;
+  std::ofstream(dir / "stream.txt") << stream;
+  const auto py = testing::RunCommand("/usr/bin/python3 " +
+                                      (testing::SourceDir() / "tests/bridge/decode_state_stream.py").string() + " " +
+                                      (dir / "stream.txt").string());
+  ASSERT_EQ(py.exit_code, 0) << py.output;
+  std::istringstream lines(py.output);
+  int checked = 0;
+  long seq = 0, last_seq = -1;
+  double t, x, y, heading, rudder_angle, rudder_order, rps;
+  std::string phase;
+  while (lines >> seq >> t >> x >> y >> heading >> rudder_angle >> rudder_order >> rps >> phase) {
+    ASSERT_GE(seq, 0);
+    ASSERT_LT(static_cast<std::size_t>(seq), states.size());
+    EXPECT_GE(seq, last_seq);  // never goes back
+    last_seq = seq;
+    const auto& st = states[static_cast<std::size_t>(seq)];
+    EXPECT_EQ(t, st.t);
+    EXPECT_EQ(x, st.x);
+    EXPECT_EQ(y, st.y);
+    EXPECT_EQ(heading, st.heading);
+    EXPECT_EQ(rudder_angle, st.rudder_angle);
+    EXPECT_EQ(rudder_order, st.rudder_order);
+    EXPECT_EQ(rps, st.propeller_rps);
+    const char* kPhases[] = {"approach", "execute", "steady", "finished", "free"};
+    EXPECT_EQ(phase, kPhases[st.maneuver_phase]);
+    ++checked;
+  }
+  EXPECT_GE(checked, 19);
+  EXPECT_GT(last_seq, 0);
+}
+
+TEST(HttpDisplay, TheHelmHolderSteersOthersAreRefusedAndEverythingIsCounted) {
+  RunningBridge run(HelmOptions());
+  httplib::Client holder = run.Client(), other = run.Client();
+  const std::string token = Claim(holder);
+  ASSERT_EQ(token.size(), 32u);
+  // One page holds the helm at a time.
+  const auto second = other.Post("/helm/claim", "", "application/x-www-form-urlencoded");
+  ASSERT_TRUE(second);
+  EXPECT_EQ(second->status, 409);
+  // A page without the token, or with a wrong one, is refused.
+  for (const std::string& t : {std::string(""), std::string(32, '0')}) {
+    const auto r = other.Post("/helm", Form(t, "-30", "1"), "application/x-www-form-urlencoded");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 403);
+  }
+  // Malformed fields: 422, counted, never queued.
+  const auto bad = holder.Post("/helm", Form(token, "ten", "1"), "application/x-www-form-urlencoded");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 422);
+  EXPECT_THAT(bad->body, HasSubstr("helm order: field 'rudder' is 'ten'; expected a number"));
+  const auto missing = holder.Post("/helm", "token=" + token + "&rudder=5", "application/x-www-form-urlencoded");
+  ASSERT_TRUE(missing);
+  EXPECT_EQ(missing->status, 422);
+  // Oversized body: 413 from httplib, counted.
+  const auto big = holder.Post("/helm", Form(token, "5", std::string(4096, '1')), "application/x-www-form-urlencoded");
+  ASSERT_TRUE(big);
+  EXPECT_EQ(big->status, 413);
+  // A NaN order is queued and rejected by the helm filter, as over LCM.
+  const auto nan = holder.Post("/helm", Form(token, "nan", "1"), "application/x-www-form-urlencoded");
+  ASSERT_TRUE(nan);
+  EXPECT_EQ(nan->status, 200);
+
+  // The holder's order: 10 deg to starboard at the current propeller order.
+  const std::string rps = StateField(holder, "repr(d[\"state\"][\"propeller_rps_order\"])");
+  const auto ok = holder.Post("/helm", Form(token, "10", rps), "application/x-www-form-urlencoded");
+  ASSERT_TRUE(ok);
+  EXPECT_EQ(ok->status, 200) << ok->body;
+  // Wait (bounded) until the order shows in the state, then stop the bridge.
+  for (int i = 0; i < 400; ++i) {
+    const std::string order = StateField(holder, "repr(d[\"state\"][\"rudder_order\"])");
+    if (!order.empty() && order[0] != 'e' && std::abs(std::stod(order) - 10.0 * kDeg) < 1e-12) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  }
+  run.Stop();
+  const auto& states = run.States();
+  ASSERT_FALSE(states.empty());
+  EXPECT_DOUBLE_EQ(states.back().rudder_order, 10.0 * kDeg);
+  EXPECT_EQ(states.back().propeller_rps_order, std::stod(rps));
+
+  const HelmCounters& h = run.summary().helm;
+  EXPECT_EQ(h.received, 2);  // the NaN and the 10 deg order: nothing else reached the filter
+  EXPECT_EQ(h.not_finite, 1);
+  EXPECT_EQ(h.accepted, 1);
+  const PageCounters p = run.display().counters();
+  EXPECT_EQ(p.helm_queued, 2);
+  EXPECT_EQ(p.not_holder, 2);
+  EXPECT_EQ(p.malformed, 2);
+  EXPECT_EQ(p.oversized, 1);
+  EXPECT_EQ(p.streams_refused, 0);
+}
+
+}  // namespace
+}  // namespace kelvin::bridge
