@@ -79,10 +79,15 @@ HttpDisplay::HttpDisplay(DisplayFeed& feed, DisplayInfo info, const HttpDisplayO
   server_->new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
   server_->set_payload_max_length(options_.max_body);
   server_->set_keep_alive_timeout(1);
-  server_->set_logger([this](const httplib::Request&, const httplib::Response& res) {
+  // Called before an error response is written (so counted before the
+  // client sees it); kelvin's own handlers never answer 400, 413, 414 or 431.
+  const httplib::Server::HandlerWithResponse count_errors = [this](const httplib::Request&,
+                                                                   httplib::Response& res) {
     if (res.status == 413 || res.status == 414 || res.status == 431) Count(&PageCounters::oversized);
     if (res.status == 400) Count(&PageCounters::bad_requests);
-  });
+    return httplib::Server::HandlerResponse::Unhandled;
+  };
+  server_->set_error_handler(count_errors);
   AddRoutes();
   if (options_.port == 0) {
     port_ = server_->bind_to_any_port(options_.host);

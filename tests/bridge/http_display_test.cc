@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -19,6 +20,7 @@
 
 #include "bridge/bridge.h"
 #include "bridge/display_feed.h"
+#include "bridge/helm_holder.h"
 #include "bridge/http_display.h"
 #include "bridge/listener.h"
 #include "data/schema/errors.h"
@@ -197,7 +199,13 @@ TEST(HttpDisplay, TheHelmHolderSteersOthersAreRefusedAndEverythingIsCounted) {
   EXPECT_EQ(nan->status, 200);
 
   // The holder's order: 10 deg to starboard at the current propeller order.
-  const std::string rps = StateField(holder, "repr(d[\"state\"][\"propeller_rps_order\"])");
+  // The first state may not be published yet: wait for it (bounded).
+  std::string rps;
+  for (int i = 0; i < 400 && (rps.empty() || rps[0] == 'e'); ++i) {
+    rps = StateField(holder, "repr(d[\"state\"][\"propeller_rps_order\"])");
+    if (rps.empty() || rps[0] == 'e') std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  }
+  ASSERT_FALSE(rps.empty() || rps[0] == 'e') << rps;
   const auto ok = holder.Post("/helm", Form(token, "10", rps), "application/x-www-form-urlencoded");
   ASSERT_TRUE(ok);
   EXPECT_EQ(ok->status, 200) << ok->body;
@@ -223,6 +231,146 @@ TEST(HttpDisplay, TheHelmHolderSteersOthersAreRefusedAndEverythingIsCounted) {
   EXPECT_EQ(p.malformed, 2);
   EXPECT_EQ(p.oversized, 1);
   EXPECT_EQ(p.streams_refused, 0);
+}
+
+// The local addresses (hex, as in /proc/net/tcp) listening on `port`.
+std::vector<std::string> ListeningAddresses(int port) {
+  std::vector<std::string> out;
+  std::ifstream tcp("/proc/net/tcp");
+  std::string line;
+  std::getline(tcp, line);  // header
+  char wanted[8];
+  std::snprintf(wanted, sizeof(wanted), "%04X", port);
+  while (std::getline(tcp, line)) {
+    std::istringstream f(line);
+    std::string slot, local, remote, state;
+    f >> slot >> local >> remote >> state;
+    if (state == "0A" && local.substr(local.find(':') + 1) == wanted) out.push_back(local.substr(0, local.find(':')));
+  }
+  return out;
+}
+
+TEST(HttpDisplay, BoundToLoopbackUnlessAnotherAddressIsNamed) {
+  EXPECT_EQ(HttpDisplayOptions{}.host, "127.0.0.1");
+  EXPECT_EQ(HttpDisplayOptions{}.port, 8080);
+  EXPECT_EQ(HttpDisplayOptions::Parse("0.0.0.0:9000").host, "0.0.0.0");
+  EXPECT_EQ(HttpDisplayOptions::Parse("0.0.0.0:9000").port, 9000);
+  DisplayFeed feed;
+  HttpDisplayOptions o;
+  o.port = 0;
+  const HttpDisplay display(feed, DisplayInfo{}, o);
+  // The kernel's own table: one listening socket, on 127.0.0.1 (0100007F).
+  EXPECT_EQ(ListeningAddresses(display.port()), std::vector<std::string>{"0100007F"});
+  EXPECT_EQ(display.url(), "http://127.0.0.1:" + std::to_string(display.port()) + "/");
+}
+
+TEST(HttpDisplay, BadAddressesAndOptionsHaveOneClearMessage) {
+  const auto message = [](auto make) -> std::string {
+    try {
+      make();
+    } catch (const ArgumentError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(message([] { HttpDisplayOptions::Parse("localhost:8080"); }),
+            "--http 'localhost:8080': expected a numeric IPv4 host such as 127.0.0.1");
+  EXPECT_EQ(message([] { HttpDisplayOptions::Parse("127.0.0.1"); }),
+            "--http '127.0.0.1': expected host:port, e.g. 127.0.0.1:10110");
+  HttpDisplayOptions slow;
+  slow.update_rate = 5;
+  EXPECT_EQ(message([&] { slow.Validate(); }), "display update rate 5 Hz: expected 10 to 50 Hz");
+  // An address that is not this machine's cannot be bound.
+  DisplayFeed feed;
+  HttpDisplayOptions remote;
+  remote.host = "192.0.2.1";  // TEST-NET-1, never local
+  remote.port = 8080;
+  EXPECT_EQ(message([&] { HttpDisplay d(feed, DisplayInfo{}, remote); }),
+            "--http 192.0.2.1:8080: cannot listen there (in use, or not an address of this machine)");
+}
+
+TEST(HttpDisplay, ServesItsOwnPageAndScriptWithoutOutsideResources) {
+  DisplayFeed feed;
+  HttpDisplayOptions o;
+  o.port = 0;
+  const HttpDisplay display(feed, DisplayInfo{}, o);
+  httplib::Client cli("127.0.0.1", display.port());
+  const auto page = cli.Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_EQ(page->get_header_value("Content-Type"), "text/html; charset=utf-8");
+  EXPECT_THAT(page->body, HasSubstr(R"(<script src="/display.js"></script>)"));
+  const auto script = cli.Get("/display.js");
+  ASSERT_TRUE(script);
+  EXPECT_EQ(script->status, 200);
+  EXPECT_THAT(script->body, HasSubstr("new EventSource('/stream')"));
+  for (const std::string& body : {page->body, script->body}) {
+    EXPECT_EQ(body.find("http://"), std::string::npos);
+    EXPECT_EQ(body.find("https://"), std::string::npos);
+    EXPECT_EQ(body.find("//cdn"), std::string::npos);
+  }
+  // Before the first state: a document without one.
+  const auto state = cli.Get("/state");
+  ASSERT_TRUE(state);
+  EXPECT_THAT(state->body, HasSubstr(R"("state":null)"));
+}
+
+TEST(HttpDisplay, PagesBeyondTheStreamLimitAndBadRequestsAreRefusedAndCounted) {
+  DisplayFeed feed;
+  HttpDisplayOptions o;
+  o.port = 0;
+  o.max_streams = 1;
+  const HttpDisplay display(feed, DisplayInfo{}, o);
+  std::atomic<bool> watching{false}, done{false};
+  std::thread first([&] {
+    httplib::Client cli("127.0.0.1", display.port());
+    cli.Get("/stream", [&](const char*, std::size_t) {
+      watching.store(true);
+      return !done.load();
+    });
+  });
+  while (!watching.load()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  httplib::Client cli("127.0.0.1", display.port());
+  const auto second = cli.Get("/stream");
+  ASSERT_TRUE(second);
+  EXPECT_EQ(second->status, 503);
+  done.store(true);
+  first.join();
+  // Headers beyond httplib's 8 KiB limit: 400, counted.
+  const auto huge = cli.Get("/state", {{"X-Big", std::string(20000, 'a')}});
+  ASSERT_TRUE(huge);
+  EXPECT_EQ(huge->status, 400);
+  const PageCounters p = display.counters();
+  EXPECT_EQ(p.streams_refused, 1);
+  EXPECT_EQ(p.bad_requests, 1);
+}
+
+TEST(HttpDisplay, AReleasedOrLapsedHelmCanBeTakenByAnotherPage) {
+  DisplayFeed feed;
+  HttpDisplayOptions o;
+  o.port = 0;
+  const HttpDisplay display(feed, DisplayInfo{}, o);
+  httplib::Client a("127.0.0.1", display.port()), b("127.0.0.1", display.port());
+  const std::string token = Claim(a);
+  ASSERT_EQ(token.size(), 32u);
+  EXPECT_EQ(Claim(b), "");
+  const auto wrong = b.Post("/helm/release", "token=" + std::string(32, 'f'), "application/x-www-form-urlencoded");
+  ASSERT_TRUE(wrong);
+  EXPECT_EQ(wrong->status, 403);
+  const auto released = a.Post("/helm/release", "token=" + token, "application/x-www-form-urlencoded");
+  ASSERT_TRUE(released);
+  EXPECT_EQ(released->status, 200);
+  const std::string second = Claim(b);
+  EXPECT_EQ(second.size(), 32u);
+  EXPECT_NE(second, token);
+  // The holder's lapse, on the holder's own clock.
+  HelmHolder holder(10.0);
+  const auto t = holder.Claim(0);
+  ASSERT_TRUE(t);
+  EXPECT_TRUE(holder.Holds(*t, 9'000'000'000));   // refreshed at 9 s
+  EXPECT_FALSE(holder.Claim(18'000'000'000));      // 9 s after the last order
+  EXPECT_TRUE(holder.Claim(19'000'000'001));       // lapsed: free again
+  EXPECT_FALSE(holder.Holds(*t, 19'000'000'002));  // and the old token is void
 }
 
 }  // namespace
