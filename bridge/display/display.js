@@ -1,6 +1,10 @@
 // kelvin bridge display: reads the state stream (/stream, server-sent
 // events), draws the own-ship track on a local grid in metres (north up) and
 // the conning values, and sends helm orders while this page holds the helm.
+//
+// For scripted use (headless browsers, tests), the address may carry
+//   ?updates=N  stop watching after N updates (the page then stays as it is)
+//   ?helm=D     take the helm at the first update and order D deg of rudder
 'use strict';
 
 const DEG = 180 / Math.PI;
@@ -96,6 +100,7 @@ function show(u) {
   showHelm(u);
   const s = u.state;
   if (!s) return;
+  setValue('seq', s.seq, 0);
   setValue('heading', wrap360(s.heading * DEG), 1);
   setValue('cog', wrap360(s.course_over_ground * DEG), 1);
   setValue('sog', s.speed_over_ground / KNOT, 2);
@@ -140,7 +145,7 @@ function draw() {
   const pts = track.concat([[s.x, s.y]]);
   let minN = Math.min(...pts.map((p) => p[0])), maxN = Math.max(...pts.map((p) => p[0]));
   let minE = Math.min(...pts.map((p) => p[1])), maxE = Math.max(...pts.map((p) => p[1]));
-  const span = Math.max(maxN - minN, maxE - minE, 400) * 1.15;
+  const span = Math.max(maxN - minN, maxE - minE, 50) * 1.15;
   const cN = (minN + maxN) / 2, cE = (minE + maxE) / 2;
   const px = c.width / span;
   const toX = (e) => c.width / 2 + (e - cE) * px;
@@ -206,6 +211,8 @@ async function sendOrder() {
     setHolding(false, 'lost the helm (another page took it, or it lapsed)');
   } else if (r.status !== 200) {
     $('helm-status').textContent = `order not taken: ${r.json.error || r.status}`;
+  } else {
+    $('helm-status').textContent = `this page holds the helm; order ${order.rudder.toFixed(0)} deg taken`;
   }
 }
 
@@ -238,13 +245,23 @@ function onKey(ev) {
   sendOrder();
 }
 
+const params = new URLSearchParams(window.location.search);
+const stopAfter = Number(params.get('updates') || 0);
+const scriptedHelm = params.get('helm');
+
+async function scriptedOrder() {
+  await claim();
+  order.rudder = Math.max(-35, Math.min(35, Number(scriptedHelm)));
+  await sendOrder();
+}
+
 function start() {
   $('claim').addEventListener('click', claim);
   $('release').addEventListener('click', release);
   $('rudder-input').addEventListener('input', (e) => { order.rudder = Number(e.target.value); sendOrder(); });
   $('rps-input').addEventListener('input', (e) => { order.rps = Number(e.target.value); sendOrder(); });
   document.addEventListener('keydown', onKey);
-  setInterval(sendOrder, 1000);  // keeps the helm while held
+  const keepHelm = setInterval(sendOrder, 1000);  // keeps the helm while held
   // The track from before this page opened, ahead of what the stream adds.
   fetch('/track').then((r) => r.json()).then((t) => {
     track.unshift(...t.x.map((x, i) => [x, t.y[i]]));
@@ -252,8 +269,16 @@ function start() {
   const source = new EventSource('/stream');
   let count = 0;
   let since = performance.now();
+  let received = 0;
   source.onmessage = (m) => {
     show(JSON.parse(m.data));
+    ++received;
+    if (received === 1 && scriptedHelm !== null) scriptedOrder();
+    if (stopAfter && received >= stopAfter) {
+      source.close();
+      clearInterval(keepHelm);
+      $('link').textContent = `stopped after ${received} updates`;
+    }
     ++count;
     const now = performance.now();
     if (now - since > 2000) {

@@ -25,6 +25,7 @@
 #include "bridge/listener.h"
 #include "data/schema/errors.h"
 #include "simulator/mmg/ship_parameters.h"
+#include "tests/bridge/running_bridge.h"
 #include "tests/test_utilities/test_utilities.h"
 // Last: httplib.h brings <resolv.h>, whose _res macro breaks Eigen's headers.
 #include <httplib.h>
@@ -32,55 +33,10 @@
 namespace kelvin::bridge {
 namespace {
 
+using testing::RunningBridge;
+
 using ::testing::HasSubstr;
 constexpr double kDeg = M_PI / 180.0;
-
-// A bridge on memq:// running on its own thread, with the display on a free
-// loopback port. The LCM states are read once the bridge has stopped.
-class RunningBridge {
- public:
-  RunningBridge(BridgeOptions o, HttpDisplayOptions h = {}) : lcm_("memq://") {
-    ship_ = sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
-    bridge_ = std::make_unique<Bridge>(ship_, o, lcm_);
-    listener_ = std::make_unique<Listener>(lcm_, "KELVIN");
-    DisplayInfo info;
-    info.ship = ship_.name;
-    info.script = o.script;
-    info.derivatives = "a published reference set, not checked against this project's CFD";
-    info.helm_source = kPageHelmSource;
-    h.port = 0;
-    display_ = std::make_unique<HttpDisplay>(feed_, info, h);
-    bridge_->SetDisplay(&feed_);
-    thread_ = std::thread([this] { summary_ = bridge_->Run(); });
-  }
-  ~RunningBridge() { Stop(); }
-  void Stop() {
-    bridge_->RequestStop();
-    if (thread_.joinable()) thread_.join();
-  }
-  // Waits for the run to end by itself.
-  void Join() {
-    if (thread_.joinable()) thread_.join();
-  }
-  const std::vector<kelvin::ship_state_t>& States() {
-    while (lcm_.handleTimeout(0) > 0) {
-    }
-    return listener_->states();
-  }
-  httplib::Client Client() const { return httplib::Client("127.0.0.1", display_->port()); }
-  const HttpDisplay& display() const { return *display_; }
-  const BridgeSummary& summary() const { return summary_; }
-
- private:
-  lcm::LCM lcm_;
-  sim::ShipParameters ship_;
-  std::unique_ptr<Bridge> bridge_;
-  std::unique_ptr<Listener> listener_;
-  DisplayFeed feed_;
-  std::unique_ptr<HttpDisplay> display_;
-  BridgeSummary summary_;
-  std::thread thread_;
-};
 
 BridgeOptions HelmOptions() {
   BridgeOptions o;
