@@ -98,7 +98,15 @@ HttpDisplay::HttpDisplay(DisplayFeed& feed, DisplayInfo info, const HttpDisplayO
     throw ArgumentError(fmt::format("--http {}:{}: cannot listen there (in use, or not an address of this machine)",
                                     options_.host, options_.port));
   }
-  thread_ = std::thread([this] { server_->listen_after_bind(); });
+  thread_ = std::thread([this] {
+    server_->listen_after_bind();
+    listen_returned_.store(true);
+  });
+  // Server::stop() does nothing before the server runs: wait until it does,
+  // so that the destructor always stops it.
+  while (!server_->is_running() && !listen_returned_.load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 HttpDisplay::~HttpDisplay() {

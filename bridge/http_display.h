@@ -79,6 +79,7 @@ class HttpDisplay {
   mutable std::mutex counters_mutex_;
   PageCounters counters_;
   std::atomic<bool> stopping_{false};
+  std::atomic<bool> listen_returned_{false};
   std::unique_ptr<httplib::Server> server_;
   int port_ = 0;
   std::thread thread_;

@@ -33,7 +33,10 @@ function updateHeadingChange(s, events) {
   const start = events.find((e) => e.kind === 'start');
   const h = s.heading * DEG;
   if (start && headingChange === null) {
-    headingChange = start.heading === null ? 0 : h - start.heading * DEG;
+    // From the start heading, the shorter way round (a page that opens
+    // after a turn of more than 180 deg cannot know it).
+    const d0 = start.heading === null ? 0 : h - start.heading * DEG;
+    headingChange = d0 - 360 * Math.round(d0 / 360);
   } else if (headingChange !== null && lastHeading !== null) {
     let d = h - lastHeading;
     d -= 360 * Math.round(d / 360);

@@ -50,6 +50,9 @@ TEST(BridgeCli, EachBadArgumentExitsTwoWithOneMessage) {
       {"--nmea --nmea-fix sim",
        "kelvin: error: --nmea-fix 'sim': expected autonomous (FAA mode A, GGA quality 1: what chart plotters and gpsd "
        "display) or simulated (FAA mode S, GGA quality 8)"},
+      {"--http localhost:8080", "kelvin: error: --http 'localhost:8080': expected a numeric IPv4 host such as 127.0.0.1"},
+      {"--http 192.0.2.1:8080",
+       "kelvin: error: --http 192.0.2.1:8080: cannot listen there (in use, or not an address of this machine)"},
       {"--origin x", "kelvin: error: --origin 'x': expected <latitude>,<longitude> in degrees, e.g. 53.5,3.0"},
       {"--origin 95,3", "kelvin: error: origin latitude 95 deg: expected a latitude between -89 and 89 deg"},
       {"--stale-timeout -1", "kelvin: error: --stale-timeout -1: expected a positive time in s"},
