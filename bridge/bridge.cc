@@ -204,6 +204,7 @@ void Bridge::PublishEvent(std::int8_t kind, int index, double overshoot, double 
   event_.period = stop && ex.size() > 3 ? ex[3] - ex[1] : kNaN;
   Publish(event_channel_, event_);
   ++summary_.events_published;
+  if (display_) display_->PublishEvent(event_);
 }
 
 void Bridge::DrainLcm() {
@@ -213,10 +214,19 @@ void Bridge::DrainLcm() {
     if (lcm_.handleTimeout(0) <= 0) break;
     ++summary_.lcm_messages_handled;
   }
+  if (display_) display_->DrainHelm(helm_, RealtimeMicroseconds());
+}
+
+void Bridge::PublishState() {
+  state_.utime = RealtimeMicroseconds();
+  Publish(state_channel_, state_);
+  ++summary_.states_published;
+  if (display_) display_->PublishState(state_, helm_.counters());
 }
 
 void Bridge::SendNmea() {
   NmeaFix fix;
+  fix.mode = options_.nmea_fix;
   fix.utc_seconds = nmea_epoch_ + state_.t;
   fix.position = {state_.latitude, state_.longitude};
   fix.speed_over_ground = state_.speed_over_ground;
@@ -281,9 +291,7 @@ BridgeSummary Bridge::Run() {
   FillState(seq);
   pacer.Start();
   last_log_ns_ = MonotonicNanoseconds();
-  state_.utime = RealtimeMicroseconds();
-  Publish(state_channel_, state_);
-  ++summary_.states_published;
+  PublishState();
   if (!publish_log_.empty()) publish_log_[0] = MonotonicNanoseconds();
   if (nmea_) SendNmea();
   if (controller_) {
@@ -370,9 +378,7 @@ BridgeSummary Bridge::Run() {
 
     // Publish at the wall-clock deadline of this state.
     pacer.WaitNext();
-    state_.utime = RealtimeMicroseconds();
-    Publish(state_channel_, state_);
-    ++summary_.states_published;
+    PublishState();
     if (static_cast<std::size_t>(seq) < publish_log_.size()) {
       publish_log_[static_cast<std::size_t>(seq)] = MonotonicNanoseconds();
     }

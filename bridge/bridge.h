@@ -19,6 +19,7 @@
 #include <span>
 #include <string>
 
+#include "bridge/display_feed.h"
 #include "bridge/geo.h"
 #include "bridge/helm_filter.h"
 #include "bridge/nmea.h"
@@ -41,6 +42,9 @@ struct BridgeOptions {
   HelmFilterOptions helm;  // rudder/rps limits are filled from the ship where left at 0 (see Bridge)
   std::optional<UdpEndpoint> nmea;  // NMEA 0183 output, off when empty
   double nmea_rate = 1.0;           // Hz of wall-clock time, 1 to 10
+  // How the NMEA sentences flag the fix (bridge/nmea.h): autonomous, which
+  // gpsd and the plotters behind it display, or simulated.
+  NmeaFixMode nmea_fix = NmeaFixMode::kAutonomous;
   double nmea_epoch = -1.0;  // s since the UNIX epoch at simulation time 0; < 0: the wall clock at start
   double max_lag = 1.0;      // s behind the schedule before the pacer re-anchors
   double log_interval = 1.0;  // s of wall-clock time between helm problem log lines
@@ -93,6 +97,10 @@ class Bridge {
   // Records the CLOCK_MONOTONIC time (ns) of every state publication into
   // `log` while it has room (for the pacing benchmark).
   void SetPublishLog(std::span<std::int64_t> log) { publish_log_ = log; }
+  // Hands every state, event and the helm statistics to `feed` (the browser
+  // display), and drains the page's helm orders from it into the helm filter
+  // with the LCM ones. Call before Run(); `feed` must outlive the run.
+  void SetDisplay(DisplayFeed* feed) { display_ = feed; }
 
   const std::string& state_channel() const { return state_channel_; }
   const std::string& helm_channel() const { return helm_channel_; }
@@ -111,6 +119,7 @@ class Bridge {
   void DrainLcm();
   void ComputeNextState();
   void FillState(std::int64_t seq);
+  void PublishState();  // stamps, publishes and hands state_ to the display
   void Publish(const std::string& channel, const auto& message);
   void PublishEvent(std::int8_t kind, int index, double overshoot, double t, double psi);
   void SendNmea();
@@ -138,6 +147,7 @@ class Bridge {
   int steps_per_state_ = 1;
   std::atomic<bool> stop_{false};
   std::span<std::int64_t> publish_log_;
+  DisplayFeed* display_ = nullptr;
   // Preallocated messages and encoding buffer.
   kelvin::ship_state_t state_{};
   kelvin::maneuver_event_t event_{};

@@ -98,6 +98,14 @@ bool AppendBearing(SentenceBuilder& b, double radians) {
   return true;
 }
 
+bool Simulated(const NmeaFix& f) { return f.mode == NmeaFixMode::kSimulated; }
+
+// The FAA mode indicator of RMC and VTG (NMEA 0183 2.3 and later).
+const char* FaaMode(const NmeaFix& f) { return Simulated(f) ? "S" : "A"; }
+
+// The talker of the heading sentences: a gyro, or the GNSS compass itself.
+const char* HeadingTalker(const NmeaFix& f) { return Simulated(f) ? "HE" : "GP"; }
+
 bool AppendFixed(SentenceBuilder& b, double value, int decimals) {
   if (!std::isfinite(value)) return false;
   b.Append("%.*f", decimals, value == 0.0 ? 0.0 : value);
@@ -105,6 +113,23 @@ bool AppendFixed(SentenceBuilder& b, double value, int decimals) {
 }
 
 }  // namespace
+
+std::string_view NmeaFixModeName(NmeaFixMode mode) {
+  switch (mode) {
+    case NmeaFixMode::kAutonomous: return "autonomous";
+    case NmeaFixMode::kSimulated: return "simulated";
+  }
+  return "?";
+}
+
+NmeaFixMode ParseNmeaFixMode(std::string_view text, std::string_view what) {
+  for (NmeaFixMode m : {NmeaFixMode::kAutonomous, NmeaFixMode::kSimulated}) {
+    if (text == NmeaFixModeName(m)) return m;
+  }
+  throw ArgumentError(fmt::format("{} '{}': expected autonomous (FAA mode A, GGA quality 1: what chart plotters and gpsd "
+                                  "display) or simulated (FAA mode S, GGA quality 8)",
+                                  what, text));
+}
 
 std::uint8_t NmeaChecksum(std::string_view body) {
   std::uint8_t sum = 0;
@@ -126,7 +151,7 @@ std::size_t FormatRmc(const NmeaFix& f, std::span<char> out) {
   if (!AppendBearing(b, f.course_over_ground)) return 0;
   b.Append(",");
   AppendDate(b, f.utc_seconds);
-  b.Append(",,,S");
+  b.Append(",,,%s", FaaMode(f));
   return b.Finish();
 }
 
@@ -138,9 +163,16 @@ std::size_t FormatGga(const NmeaFix& f, std::span<char> out) {
   if (!AppendAngle(b, f.position.latitude, 2, 'N', 'S')) return 0;
   b.Append(",");
   if (!AppendAngle(b, f.position.longitude, 3, 'E', 'W')) return 0;
-  // Quality 8 (simulation mode), no satellites, HDOP 1.0, antenna at the
-  // waterline, no geoid separation, no differential data.
-  b.Append(",8,00,1.0,0.0,M,0.0,M,,");
+  // Quality 1 (autonomous GNSS fix) with the satellites in use, or 8
+  // (simulation mode) with none; HDOP 1.0, antenna at the waterline, no geoid
+  // separation, no differential data.
+  if (f.satellites < 0 || f.satellites > 99) return 0;
+  if (Simulated(f)) {
+    b.Append(",8,00");
+  } else {
+    b.Append(",1,%02d", f.satellites);
+  }
+  b.Append(",1.0,0.0,M,0.0,M,,");
   return b.Finish();
 }
 
@@ -152,13 +184,13 @@ std::size_t FormatVtg(const NmeaFix& f, std::span<char> out) {
   if (!AppendFixed(b, f.speed_over_ground / kMetresPerSecondPerKnot, 2)) return 0;
   b.Append(",N,");
   if (!AppendFixed(b, f.speed_over_ground * 3.6, 2)) return 0;
-  b.Append(",K,S");
+  b.Append(",K,%s", FaaMode(f));
   return b.Finish();
 }
 
 std::size_t FormatHdt(const NmeaFix& f, std::span<char> out) {
   SentenceBuilder b(out);
-  b.Append("$HEHDT,");
+  b.Append("$%sHDT,", HeadingTalker(f));
   if (!AppendBearing(b, f.heading)) return 0;
   b.Append(",T");
   return b.Finish();
@@ -166,7 +198,7 @@ std::size_t FormatHdt(const NmeaFix& f, std::span<char> out) {
 
 std::size_t FormatRot(const NmeaFix& f, std::span<char> out) {
   SentenceBuilder b(out);
-  b.Append("$HEROT,");
+  b.Append("$%sROT,", HeadingTalker(f));
   if (!AppendFixed(b, f.yaw_rate / kDeg * 60.0, 2)) return 0;
   b.Append(",A");
   return b.Finish();

@@ -31,7 +31,11 @@ namespace {
 
 // Operator-new calls made by Run() for `duration` s of simulation with
 // `helm_messages` helm orders queued up front (drained 256 per state).
-long AllocationsOfRun(const std::string& script, double duration, int helm_messages, const std::string& prefix) {
+// With `display`, the states, events and helm statistics also go to a
+// DisplayFeed (the browser display's side of the loop) holding `page_orders`
+// queued page helm orders.
+long AllocationsOfRun(const std::string& script, double duration, int helm_messages, const std::string& prefix,
+                      bool display = false, int page_orders = 0) {
   const sim::ShipParameters ship = sim::LoadShip(testing::SourceDir() / "data/ships/kvlcc2.yaml");
   lcm::LCM lcm("memq://");
   BridgeOptions o;
@@ -42,6 +46,8 @@ long AllocationsOfRun(const std::string& script, double duration, int helm_messa
   o.channel_prefix = prefix;
   o.helm.stale_timeout = 60;
   Bridge bridge(ship, o, lcm);
+  DisplayFeed feed;
+  if (display) bridge.SetDisplay(&feed);
   kelvin::helm_command_t cmd{};
   cmd.utime = RealtimeMicroseconds();
   cmd.rps_order = bridge.approach_rps();
@@ -49,10 +55,11 @@ long AllocationsOfRun(const std::string& script, double duration, int helm_messa
     cmd.rudder_order = (i % 2 ? 1 : -1) * 0.1;
     lcm.publish(bridge.helm_channel(), &cmd);
   }
+  for (int i = 0; i < page_orders; ++i) EXPECT_TRUE(feed.QueueHelm(cmd));
   const long before = g_allocations.load();
   const BridgeSummary s = bridge.Run();
   const long after = g_allocations.load();
-  EXPECT_EQ(s.helm.accepted, helm_messages);
+  EXPECT_EQ(s.helm.accepted, helm_messages + page_orders);
   return after - before;
 }
 
@@ -67,6 +74,12 @@ TEST(BridgeAllocations, ScriptedZigZagAllocatesNothingPerStep) {
   // Both runs cover at least one rudder reversal (the first is at ~12 s).
   const long short_run = AllocationsOfRun("zigzag:20/20:stbd", 20, 0, "KELVIN");
   const long long_run = AllocationsOfRun("zigzag:20/20:stbd", 100, 0, "KELVIN");
+  EXPECT_EQ(long_run, short_run);
+}
+
+TEST(BridgeAllocations, TheDisplayFeedAllocatesNothingPerStep) {
+  const long short_run = AllocationsOfRun("zigzag:20/20:stbd", 20, 0, "KELVIN", true, 16);
+  const long long_run = AllocationsOfRun("zigzag:20/20:stbd", 100, 0, "KELVIN", true, 16);
   EXPECT_EQ(long_run, short_run);
 }
 

@@ -47,6 +47,12 @@ TEST(BridgeCli, EachBadArgumentExitsTwoWithOneMessage) {
       {"--nmea bogus", "kelvin: error: --nmea 'bogus': expected host:port, e.g. 127.0.0.1:10110"},
       {"--nmea 127.0.0.1:0", "kelvin: error: --nmea '127.0.0.1:0': expected a port between 1 and 65535 after the colon"},
       {"--nmea 127.0.0.1:10110 --nmea-rate 20", "kelvin: error: --nmea-rate 20: expected an NMEA rate between 1 and 10 Hz"},
+      {"--nmea --nmea-fix sim",
+       "kelvin: error: --nmea-fix 'sim': expected autonomous (FAA mode A, GGA quality 1: what chart plotters and gpsd "
+       "display) or simulated (FAA mode S, GGA quality 8)"},
+      {"--http localhost:8080", "kelvin: error: --http 'localhost:8080': expected a numeric IPv4 host such as 127.0.0.1"},
+      {"--http 192.0.2.1:8080",
+       "kelvin: error: --http 192.0.2.1:8080: cannot listen there (in use, or not an address of this machine)"},
       {"--origin x", "kelvin: error: --origin 'x': expected <latitude>,<longitude> in degrees, e.g. 53.5,3.0"},
       {"--origin 95,3", "kelvin: error: origin latitude 95 deg: expected a latitude between -89 and 89 deg"},
       {"--stale-timeout -1", "kelvin: error: --stale-timeout -1: expected a positive time in s"},
@@ -151,10 +157,16 @@ TEST(BridgeCli, ScriptedZigZagRunsToItsEnd) {
 TEST(BridgeCli, NmeaWithoutAValueGoesToTheUsualPort) {
   const auto r = Bridge("--nmea --lcm-url memq:// --duration 1 --speedup 100");
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("NMEA 0183 to 127.0.0.1:10110 at 1 Hz"));
+  EXPECT_THAT(r.output, HasSubstr("NMEA 0183 to 127.0.0.1:10110 at 1 Hz (autonomous fixes)"));
   // 21 states at 2000 per wall-clock second; at 1 Hz a fix goes with every
   // 2000th state: only the one at t = 0, six sentences.
   EXPECT_THAT(r.output, HasSubstr("nmea: 6 sentences sent, 0 dropped"));
+}
+
+TEST(BridgeCli, NmeaFixModeIsChosenOnTheCommandLine) {
+  const auto r = Bridge("--nmea --nmea-fix simulated --lcm-url memq:// --duration 1 --speedup 100");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("NMEA 0183 to 127.0.0.1:10110 at 1 Hz (simulated fixes)"));
 }
 
 TEST(ListenCli, EachBadArgumentExitsTwoWithOneMessage) {

@@ -114,6 +114,9 @@ void CheckRoundTrip(const NmeaFix& fix) {
   const double tod = std::fmod(fix.utc_seconds, 86400.0);
   const double pos_tol = 0.5e-5 / 60.0 + 1e-12;  // half a unit of 1e-5 minute, in deg
   const double sog_kn = fix.speed_over_ground / kKnot;
+  const bool simulated = fix.mode == NmeaFixMode::kSimulated;
+  const std::string faa = simulated ? "S" : "A";  // FAA mode: simulator or autonomous
+  const std::string heading_talker = simulated ? "HE" : "GP";
 
   const Sentence rmc = Parse(Format(FormatRmc, fix));
   EXPECT_EQ(rmc.address, "GPRMC");
@@ -127,7 +130,7 @@ void CheckRoundTrip(const NmeaFix& fix) {
   EXPECT_EQ(rmc.fields[8].size(), 6u);
   EXPECT_EQ(rmc.fields[9], "");
   EXPECT_EQ(rmc.fields[10], "");
-  EXPECT_EQ(rmc.fields[11], "S");  // simulator mode
+  EXPECT_EQ(rmc.fields[11], faa);
 
   const Sentence gga = Parse(Format(FormatGga, fix));
   EXPECT_EQ(gga.address, "GPGGA");
@@ -135,7 +138,9 @@ void CheckRoundTrip(const NmeaFix& fix) {
   EXPECT_NEAR(std::remainder(TimeOfDay(gga.fields[0]) - tod, 86400.0), 0.0, 0.005 + 1e-6);
   EXPECT_NEAR(LatLon(gga.fields[1], gga.fields[2], 2), lat, pos_tol);
   EXPECT_NEAR(LatLon(gga.fields[3], gga.fields[4], 3), lon, pos_tol);
-  EXPECT_EQ(gga.fields[5], "8");  // simulation mode
+  EXPECT_EQ(gga.fields[5], simulated ? "8" : "1");  // simulation mode or autonomous GNSS fix
+  EXPECT_EQ(Number(gga.fields[6]), simulated ? 0 : fix.satellites);
+  EXPECT_EQ(gga.fields[6].size(), 2u);
   EXPECT_EQ(gga.fields[8], "0.0");
   EXPECT_EQ(gga.fields[9], "M");
   EXPECT_EQ(gga.fields[11], "M");
@@ -150,10 +155,10 @@ void CheckRoundTrip(const NmeaFix& fix) {
   EXPECT_EQ(vtg.fields[5], "N");
   EXPECT_NEAR(Number(vtg.fields[6]), fix.speed_over_ground * 3.6, 0.005 + 1e-9);
   EXPECT_EQ(vtg.fields[7], "K");
-  EXPECT_EQ(vtg.fields[8], "S");
+  EXPECT_EQ(vtg.fields[8], faa);
 
   const Sentence hdt = Parse(Format(FormatHdt, fix));
-  EXPECT_EQ(hdt.address, "HEHDT");
+  EXPECT_EQ(hdt.address, heading_talker + "HDT");
   ASSERT_EQ(hdt.fields.size(), 2u);
   const double heading = Number(hdt.fields[0]);
   EXPECT_GE(heading, 0.0);
@@ -162,7 +167,7 @@ void CheckRoundTrip(const NmeaFix& fix) {
   EXPECT_EQ(hdt.fields[1], "T");
 
   const Sentence rot = Parse(Format(FormatRot, fix));
-  EXPECT_EQ(rot.address, "HEROT");
+  EXPECT_EQ(rot.address, heading_talker + "ROT");
   ASSERT_EQ(rot.fields.size(), 2u);
   EXPECT_NEAR(Number(rot.fields[0]), fix.yaw_rate / kDeg * 60.0, 0.005 + 1e-9);
   EXPECT_EQ(rot.fields[1], "A");
@@ -193,8 +198,9 @@ TEST(Nmea, ChecksumOfAKnownSentence) {
   EXPECT_EQ(NmeaChecksum("GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,"), 0x47);
 }
 
-TEST(Nmea, ExactTextOfEachSentence) {
-  const NmeaFix f = ExampleFix();
+TEST(Nmea, ExactTextOfEachSentenceOfASimulatedFix) {
+  NmeaFix f = ExampleFix();
+  f.mode = NmeaFixMode::kSimulated;
   // Checksums computed independently (Python: functools.reduce of XOR).
   EXPECT_EQ(Format(FormatRmc, f), "$GPRMC,221320.26,A,5330.74074,N,00302.74073,E,2.29,12.35,141123,,,S*73\r\n");
   EXPECT_EQ(Format(FormatGga, f), "$GPGGA,221320.26,5330.74074,N,00302.74073,E,8,00,1.0,0.0,M,0.0,M,,*53\r\n");
@@ -203,6 +209,43 @@ TEST(Nmea, ExactTextOfEachSentence) {
   EXPECT_EQ(Format(FormatRot, f), "$HEROT,-30.00,A*05\r\n");
   EXPECT_EQ(Format(FormatRsa, f), "$IIRSA,20.0,A,,V*4B\r\n");
   CheckRoundTrip(f);
+}
+
+TEST(Nmea, ExactTextOfEachSentenceOfAnAutonomousFixTheDefault) {
+  const NmeaFix f = ExampleFix();
+  ASSERT_EQ(f.mode, NmeaFixMode::kAutonomous);
+  EXPECT_EQ(Format(FormatRmc, f), "$GPRMC,221320.26,A,5330.74074,N,00302.74073,E,2.29,12.35,141123,,,A*61\r\n");
+  EXPECT_EQ(Format(FormatGga, f), "$GPGGA,221320.26,5330.74074,N,00302.74073,E,1,12,1.0,0.0,M,0.0,M,,*59\r\n");
+  EXPECT_EQ(Format(FormatVtg, f), "$GPVTG,12.35,T,,M,2.29,N,4.24,K,A*03\r\n");
+  EXPECT_EQ(Format(FormatHdt, f), "$GPHDT,10.00,T*34\r\n");
+  EXPECT_EQ(Format(FormatRot, f), "$GPROT,-30.00,A*1F\r\n");
+  EXPECT_EQ(Format(FormatRsa, f), "$IIRSA,20.0,A,,V*4B\r\n");
+  CheckRoundTrip(f);
+}
+
+TEST(Nmea, FixModeNamesAndTheirOneError) {
+  EXPECT_EQ(ParseNmeaFixMode("autonomous", "--nmea-fix"), NmeaFixMode::kAutonomous);
+  EXPECT_EQ(ParseNmeaFixMode("simulated", "--nmea-fix"), NmeaFixMode::kSimulated);
+  EXPECT_EQ(NmeaFixModeName(NmeaFixMode::kAutonomous), "autonomous");
+  EXPECT_EQ(NmeaFixModeName(NmeaFixMode::kSimulated), "simulated");
+  try {
+    ParseNmeaFixMode("S", "--nmea-fix");
+    ADD_FAILURE() << "no error";
+  } catch (const ArgumentError& e) {
+    EXPECT_STREQ(e.what(), "--nmea-fix 'S': expected autonomous (FAA mode A, GGA quality 1: what chart plotters and "
+                           "gpsd display) or simulated (FAA mode S, GGA quality 8)");
+  }
+}
+
+TEST(Nmea, SatelliteCountOutsideTwoDigitsGivesNoGga) {
+  NmeaFix f = ExampleFix();
+  char buf[128];
+  f.satellites = 100;
+  EXPECT_EQ(FormatGga(f, std::span<char>(buf, sizeof(buf))), 0u);
+  f.satellites = -1;
+  EXPECT_EQ(FormatGga(f, std::span<char>(buf, sizeof(buf))), 0u);
+  f.satellites = 7;
+  EXPECT_EQ(Parse(Format(FormatGga, f)).fields[6], "07");
 }
 
 TEST(Nmea, RoundTripOfRandomFixes) {
@@ -218,6 +261,7 @@ TEST(Nmea, RoundTripOfRandomFixes) {
     f.heading = ang(rng);
     f.yaw_rate = rate(rng);
     f.rudder_angle = rudder(rng) * kDeg;
+    f.mode = i % 2 ? NmeaFixMode::kSimulated : NmeaFixMode::kAutonomous;
     CheckRoundTrip(f);
     if (HasFailure()) return;
   }
@@ -329,7 +373,7 @@ TEST(NmeaUdpSender, SendsTheSixSentencesOnLoopback) {
   tx.Send(ExampleFix());
   const auto got = rx.ReceiveAll(1000);
   ASSERT_EQ(got.size(), 6u);
-  const char* kOrder[] = {"GPRMC", "GPGGA", "GPVTG", "HEHDT", "HEROT", "IIRSA"};
+  const char* kOrder[] = {"GPRMC", "GPGGA", "GPVTG", "GPHDT", "GPROT", "IIRSA"};
   for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(Parse(got[i]).address, kOrder[i]);
   EXPECT_EQ(tx.sentences_sent(), 6);
   EXPECT_EQ(tx.sentences_dropped(), 0);

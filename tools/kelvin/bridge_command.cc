@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <memory>
@@ -11,6 +12,8 @@
 
 #include "bridge/bridge.h"
 #include "bridge/derivative_set.h"
+#include "bridge/display_feed.h"
+#include "bridge/http_display.h"
 #include "data/schema/errors.h"
 #include "simulator/mmg/ship_parameters.h"
 #include "tools/kelvin/commands.h"
@@ -26,7 +29,9 @@ struct BridgeArgs {
   bridge::BridgeOptions options;
   std::string lcm_url;
   std::string nmea;
+  std::string nmea_fix = "autonomous";
   std::string origin;
+  std::string http;  // empty: no display
   std::vector<int> helm_sources;
 };
 
@@ -61,6 +66,36 @@ const char* StatusName(bridge::BridgeStatus s) {
   return "?";
 }
 
+// The browser display, if --http was given.
+std::unique_ptr<bridge::HttpDisplay> StartDisplay(const BridgeArgs& a, const sim::ShipParameters& ship,
+                                                  const bridge::DerivativeAssessment& assessment,
+                                                  bridge::DisplayFeed& feed) {
+  if (a.http.empty()) return nullptr;
+  const bridge::HttpDisplayOptions options = bridge::HttpDisplayOptions::Parse(a.http);
+  bridge::DisplayInfo info;
+  info.ship = ship.name;
+  info.script = a.options.script;
+  info.derivatives_checked = assessment.status == bridge::DerivativeStatus::kChecked;
+  info.derivatives = assessment.message;
+  info.origin_latitude = a.options.origin.latitude;
+  info.origin_longitude = a.options.origin.longitude;
+  info.helm_source = bridge::kPageHelmSource;
+  const auto& sources = a.options.helm.sources;
+  if (!sources.empty() && std::find(sources.begin(), sources.end(), bridge::kPageHelmSource) == sources.end()) {
+    spdlog::warn("--http: the page's helm orders (source_id {}) will be rejected: add --helm-source {}",
+                 bridge::kPageHelmSource, bridge::kPageHelmSource);
+  }
+  auto display = std::make_unique<bridge::HttpDisplay>(feed, info, options);
+  spdlog::info("display: open {} in a browser", display->url());
+  return display;
+}
+
+void PrintPageCounters(const bridge::PageCounters& p) {
+  fmt::print("  display: {} page helm orders queued; dropped: {} without the helm, {} malformed, {} oversized, {} bad "
+             "requests, {} while the inbox was full; {} streams refused\n",
+             p.helm_queued, p.not_holder, p.malformed, p.oversized, p.bad_requests, p.inbox_full, p.streams_refused);
+}
+
 void RunBridge(BridgeArgs& a) {
   sim::ShipParameters ship = sim::LoadShip(a.ship_file);
   std::optional<sim::DerivativeSet> set;
@@ -81,6 +116,7 @@ void RunBridge(BridgeArgs& a) {
 
   bridge::BridgeOptions& o = a.options;
   if (!a.nmea.empty()) o.nmea = bridge::UdpEndpoint::Parse(a.nmea, "--nmea");
+  o.nmea_fix = bridge::ParseNmeaFixMode(a.nmea_fix, "--nmea-fix");
   if (!a.origin.empty()) o.origin = ParseOrigin(a.origin);
   o.helm.sources.assign(a.helm_sources.begin(), a.helm_sources.end());
   o.Validate();
@@ -92,11 +128,16 @@ void RunBridge(BridgeArgs& a) {
                                     a.lcm_url));
   }
   bridge::Bridge bridge(ship, o, lcm);
+  bridge::DisplayFeed feed;
+  const std::unique_ptr<bridge::HttpDisplay> display = StartDisplay(a, ship, assessment, feed);
+  if (display) bridge.SetDisplay(&feed);
   spdlog::info("bridge: {} at {} Hz (step {} s x {}), speedup {}, {}; channels {}, {}, {}{}", ship.name, o.rate,
                bridge.step(), bridge.steps_per_state(), o.speedup,
                o.script.empty() ? std::string("helm commands steer") : "script " + o.script, bridge.state_channel(),
                bridge.helm_channel(), bridge.event_channel(),
-               o.nmea ? fmt::format(", NMEA 0183 to {} at {} Hz", o.nmea->ToString(), o.nmea_rate) : std::string());
+               o.nmea ? fmt::format(", NMEA 0183 to {} at {} Hz ({} fixes)", o.nmea->ToString(), o.nmea_rate,
+                                    bridge::NmeaFixModeName(o.nmea_fix))
+                      : std::string());
 
   g_running_bridge.store(&bridge);
   struct sigaction sa {};
@@ -120,6 +161,7 @@ void RunBridge(BridgeArgs& a) {
   fmt::print("  pacing{}: {} late ticks, {} resyncs, max lateness {:.3f} ms\n", s.realtime ? " (SCHED_FIFO)" : "",
              s.late_ticks, s.resyncs, s.max_lateness * 1e3);
   if (o.nmea) fmt::print("  nmea: {} sentences sent, {} dropped\n", s.nmea_sentences_sent, s.nmea_sentences_dropped);
+  if (display) PrintPageCounters(display->counters());
   if (s.status == bridge::BridgeStatus::kDiverged) {
     throw std::runtime_error(fmt::format("simulation diverged at t = {} s", s.sim_time));
   }
@@ -150,6 +192,15 @@ Command AddBridgeCommand(CLI::App& app) {
   cmd->add_option("--nmea", args->nmea, "Send NMEA 0183 over UDP to host:port (without a value: 127.0.0.1:10110)")
       ->expected(0, 1)
       ->default_str("127.0.0.1:10110");
+  cmd->add_option("--http", args->http,
+                  "Serve the browser display at host:port (without a value: 127.0.0.1:8080; loopback unless you name "
+                  "another address)")
+      ->expected(0, 1)
+      ->default_str("127.0.0.1:8080");
+  cmd->add_option("--nmea-fix", args->nmea_fix,
+                  "How NMEA flags the fix: autonomous (FAA mode A, GGA quality 1; shown by plotters and gpsd) or "
+                  "simulated (FAA mode S, GGA quality 8)")
+      ->capture_default_str();
   cmd->add_option("--nmea-rate", o.nmea_rate, "NMEA fixes per wall-clock second, 1 to 10")->capture_default_str();
   cmd->add_option("--origin", args->origin, "Latitude,longitude in deg of the start position (default 53.5,3.0)");
   cmd->add_option("--stale-timeout", o.helm.stale_timeout, "Reject helm commands older than this (s)")
