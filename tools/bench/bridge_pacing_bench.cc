@@ -183,7 +183,7 @@ std::string Section(const Stats& b, const Stats& f, bool fifo, const Stats& n, c
   std::ostringstream s;
   s << "## Bridge pacing\n\n"
     << fmt::format(
-           "Produced by `build/release/tools/bench/bridge_pacing_bench --write BENCHMARKS.md`: `kelvin bridge` streaming the KVLCC2 in real time at {:g} Hz for {:g} "
+           "Produced by `build/ci/tools/bench/bridge_pacing_bench --write BENCHMARKS.md` (the ci preset: release optimisation): `kelvin bridge` streaming the KVLCC2 in real time at {:g} Hz for {:g} "
            "s (memq://, helm mode, {} integrator step(s) per state), publish instants on CLOCK_MONOTONIC. The peer is "
            "a naive loop doing the same steps and publication followed by `sleep_for(T)`; the four loops run one "
            "after the other on the same machine, normal scheduling unless marked SCHED_FIFO. Jitter is |t_k - t_(k-1) - T|; drift is (t_N - t_0) - N T.\n\n",
