@@ -21,7 +21,7 @@ namespace {
 using ::testing::HasSubstr;
 
 // KP505 (the KCS propeller) open-water table, NMRI data for SIMMAN 2008
-// (/work/shared/reference/kp505_open_water.csv), K_Q = 10KQ / 10.
+// (data/reference/kp505_open_water.csv), K_Q = 10KQ / 10.
 OpenWaterCurve Kp505() {
   OpenWaterCurve c;
   c.J = {0.00, 0.10, 0.20, 0.30, 0.40, 0.50, 0.60, 0.70, 0.80, 0.90, 1.00, 1.05};

@@ -52,8 +52,6 @@ inline std::filesystem::path EnvPath(const char* var, const char* fallback) {
 inline std::filesystem::path SourceDir() { return EnvPath("KELVIN_SOURCE_DIR", KELVIN_DEFAULT_SOURCE_DIR); }
 // The directory holding the built `kelvin` program.
 inline std::filesystem::path ToolsDir() { return EnvPath("KELVIN_TOOLS_DIR", KELVIN_DEFAULT_TOOLS_DIR); }
-// ../shared beside the repository (published reference data), if present.
-inline std::filesystem::path SharedDir() { return SourceDir().parent_path() / "shared"; }
 
 // The whole content of a file (empty if it cannot be read).
 inline std::string ReadText(const std::filesystem::path& path) {

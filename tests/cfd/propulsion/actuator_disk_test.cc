@@ -473,9 +473,9 @@ TEST(ActuatorDiskStream, TorqueLeavesAsTheAngularMomentumFluxOfTheSwirl) {
 // Open water in CFD
 
 // KP505 (the KCS propeller) open-water table: NMRI data for SIMMAN 2008,
-// /work/shared/reference/kp505_open_water.csv (J, K_T, 10 K_Q).
+// data/reference/kp505_open_water.csv (J, K_T, 10 K_Q).
 sim::OpenWaterCurve Kp505() {
-  std::ifstream in(kelvin::testing::SharedDir() / "reference/kp505_open_water.csv");
+  std::ifstream in(kelvin::testing::SourceDir() / "data/reference/kp505_open_water.csv");
   EXPECT_TRUE(in.good()) << "kp505_open_water.csv";
   sim::OpenWaterCurve c;
   std::string line;
