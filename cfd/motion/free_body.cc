@@ -142,6 +142,13 @@ void FreeBody::IntegratePose() {
 
 Pose FreeBody::At(double /*t*/) const { return pose_; }
 
+Eigen::Matrix3d FreeBody::MassMatrix() const {
+  const double m = options_.mass, xg = options_.x_G;
+  Eigen::Matrix3d M;
+  M << m, 0, 0, 0, m, m * xg, 0, m * xg, options_.I_zG + m * xg * xg;
+  return M;
+}
+
 std::array<double, 3> FreeBody::Inertia(const std::array<double, 3>& nu, const std::array<double, 3>& rate) const {
   const double m = options_.mass, xg = options_.x_G;
   const double u = nu[0], v = nu[1], r = nu[2];
@@ -163,10 +170,7 @@ void FreeBody::BeginStep(double t_new, double dt) {
     for (int i = 0; i < 3; ++i) rate[i] = IsFree(i) ? 0.0 : HeldAcceleration(i, t_);
     const std::array<double, 3> f = LoadArray(last_load_), ext = LoadArray(options_.external);
     const std::array<double, 3> base = Inertia(n0, rate);
-    Eigen::Matrix3d M;
-    const double m = options_.mass, xg = options_.x_G;
-    M << m, 0, 0, 0, m, m * xg, 0, m * xg, options_.I_zG + m * xg * xg;
-    std::array<double, 3> acc = SolveFree(M, {f[0] + ext[0] - base[0], f[1] + ext[1] - base[1], f[2] + ext[2] - base[2]});
+    std::array<double, 3> acc = SolveFree(MassMatrix(), {f[0] + ext[0] - base[0], f[1] + ext[1] - base[1], f[2] + ext[2] - base[2]});
     for (int i = 0; i < 3; ++i) nu_[i] = IsFree(i) ? n0[i] + dt * acc[i] : HeldVelocity(i, t_);
   } else {
     const bool extrapolate = accepted_.steps >= 1;
@@ -216,10 +220,9 @@ double FreeBody::Correct(const PlanarLoad& load, double length) {
     const std::array<double, 3> inertia = Inertia(nu_, Rates());
     const std::array<double, 3> residual = {f[0] + ext[0] - inertia[0], f[1] + ext[1] - inertia[1],
                                             f[2] + ext[2] - inertia[2]};
-    const double m = options_.mass, xg = options_.x_G;
     const auto& ma = options_.added_mass;
-    Eigen::Matrix3d J;
-    J << m + ma[0], 0, 0, 0, m + ma[1], m * xg, 0, m * xg, options_.I_zG + m * xg * xg + ma[2];
+    Eigen::Matrix3d J = MassMatrix();
+    J.diagonal() += Eigen::Vector3d(ma[0], ma[1], ma[2]);
     J *= Bdf().a / dt_;
     const std::array<double, 3> d = SolveFree(J, residual);
     for (int i = 0; i < 3; ++i) nu_[i] += options_.relaxation * d[i];

@@ -146,6 +146,8 @@ class FreeBody : public BodyKinematics {
   // update of the iterate's positions from its velocities.
   Pose MakePose(const std::array<double, 3>& pos) const;
   void IntegratePose();
+  // The body's mass matrix M in (u, v, r) about the reference point.
+  Eigen::Matrix3d MassMatrix() const;
   // M D(nu) - C(nu): what the load must equal, per degree of freedom.
   std::array<double, 3> Inertia(const std::array<double, 3>& nu, const std::array<double, 3>& rate) const;
 

@@ -31,7 +31,6 @@ class FreeRunningCoupler final : public Monitor {
   // propeller) must outlive the coupler.
   explicit FreeRunningCoupler(const Case& c);
 
-  std::vector<int> ForcePatches() const override { return hull_; }
   void RestoreScalars(const CheckpointScalars& scalars) override;
   void Start(PimpleSolver& solver, History& history, const RunStart& start) override;
   void BeforeStep(PimpleSolver& solver, double t_new, double dt) override;

@@ -38,12 +38,11 @@ std::array<double, 3> ShipAddedMass(const sim::ShipParameters& ship) {
   return {ship.hull.m_x * mass_scale, ship.hull.m_y * mass_scale, ship.hull.J_z * mass_scale * p.Lpp * p.Lpp};
 }
 
-void ReadCoupling(const ConfigNode& node, const sim::ShipParameters& ship, FreeBodyOptions& o) {
+void ReadCoupling(const ConfigNode& node, FreeBodyOptions& o) {
   node.ExpectKeys({"scheme", "added_mass", "relaxation"});
   o.coupling = GetEnum(node, "scheme", BodyCoupling::kStabilised,
                        {{"stabilised", BodyCoupling::kStabilised}, {"explicit", BodyCoupling::kExplicit}});
   o.relaxation = node.Get<double>("relaxation", 1.0);
-  o.added_mass = ShipAddedMass(ship);
   if (auto am = node.Find("added_mass")) {
     if (am->IsScalar()) {
       const std::string text = am->As<std::string>();
@@ -95,7 +94,7 @@ FreeRunningSettings LoadFreeRunning(const ConfigNode& node, const std::filesyste
   }
   o.coupling = BodyCoupling::kStabilised;
   o.added_mass = ShipAddedMass(s.ship);
-  if (auto c = node.Find("coupling")) ReadCoupling(*c, s.ship, o);
+  if (auto c = node.Find("coupling")) ReadCoupling(*c, o);
   o.divergence_factor = node.Get<double>("divergence_factor", 10.0);
   if (auto h = node.Find("hull_patches")) {
     for (const ConfigNode& item : h->Items()) s.hull_patches.push_back(item.As<std::string>());

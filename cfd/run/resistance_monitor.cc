@@ -155,8 +155,9 @@ std::string ResistanceMonitor::WriteSplit(data::H5Writer& w) const {
         // A turbulent hull's friction lies near the ITTC-57 line (CFD and
         // model tests give about 1.0 to 1.1 of it); well outside, R_F and
         // what is built on it are wrong, usually through the wall cells.
-        Scalar(w, "C_F_over_ITTC57", FrictionRatio(), "1", "C_F / C_F0, C_F0 = 0.075 / (log10 Re - 2)^2 (ITTC 1957)");
-        summary += fmt::format("; C_F / C_F0(ITTC-57) = {:.3f}", FrictionRatio());
+        const double ratio = FrictionRatio();
+        Scalar(w, "C_F_over_ITTC57", ratio, "1", "C_F / C_F0, C_F0 = 0.075 / (log10 Re - 2)^2 (ITTC 1957)");
+        summary += fmt::format("; C_F / C_F0(ITTC-57) = {:.3f}", ratio);
       }
     }
   }

@@ -130,12 +130,8 @@ H5Writer::H5Writer(fs::path target, Mode mode) : target_(std::move(target)) {
 
 H5Writer::~H5Writer() {
   if (!committed_) {
-    // Empty the temporary file first: on a full disk the close must still
-    // find room for its metadata, or HDF5 keeps a half-closed file that
-    // crashes the library's exit.
-    std::error_code ec;
-    fs::resize_file(tmp_, 0, ec);
     file_.Reset();
+    std::error_code ec;
     fs::remove(tmp_, ec);
   }
 }
