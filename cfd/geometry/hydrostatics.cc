@@ -87,6 +87,8 @@ Hydrostatics ComputeHydrostatics(const TriangleSurface& s, double Lpp, double B,
         sz += p.z();
         sxz += p.x() * p.z();
         zlo = std::min(zlo, p.z());
+        h.x_min = std::min(h.x_min, p.x());
+        h.x_max = std::max(h.x_max, p.x());
         if (p.z() == 0.0) {
           xlo = std::min(xlo, p.x());
           xhi = std::max(xhi, p.x());
@@ -138,8 +140,10 @@ HullPlacement LoadHullPlacement(const fs::path& ship_file) {
   p.Lpp = pr.GetPositive("Lpp");
   p.B = pr.GetPositive("B");
   p.T = pr.GetPositive("d");
+  if (pr.Has("displacement")) p.displacement = pr.GetPositive("displacement");
   const auto g = root["geometry"];
-  g.ExpectKeys({"file", "length_unit", "x_ap", "waterline_z", "bow_direction"});
+  g.ExpectKeys({"file", "length_unit", "x_ap", "waterline_z", "bow_direction", "repair", "merge_tolerance",
+                "short_edge"});
   fs::path file = g.Get<std::string>("file");
   if (file.is_relative()) file = ship_file.parent_path() / file;
   p.file = file;
@@ -152,16 +156,24 @@ HullPlacement LoadHullPlacement(const fs::path& ship_file) {
   } else if (dir != "+x") {
     g["bow_direction"].Fail("'+x' or '-x'");
   }
+  p.repair = g.Get<bool>("repair", true);
+  if (g.Has("merge_tolerance")) p.repair_options.merge_tolerance = g.GetPositive("merge_tolerance");
+  if (g.Has("short_edge")) p.repair_options.short_edge = g.GetPositive("short_edge");
   return p;
 }
 
-TriangleSurface LoadHull(const HullPlacement& p, SurfaceCheck* check) {
+TriangleSurface LoadHull(const HullPlacement& p, SurfaceCheck* check, RepairReport* repair) {
   TriangleSurface s = ReadSurface(p.file);
   const double sgn = p.bow_towards_minus_x ? -1.0 : 1.0;
   for (auto& v : s.vertices) {
     // x forward from AP; a flip of x also flips y to keep the axes right-handed.
     v = Eigen::Vector3d(sgn * (v.x() * p.length_unit - p.x_ap), sgn * v.y() * p.length_unit,
                         v.z() * p.length_unit - p.waterline_z);
+  }
+  if (p.repair) {
+    RepairOptions o = p.repair_options;
+    o.waterline_z = 0.0;
+    s = RepairSurface(s, o, repair);
   }
   const SurfaceCheck c = ValidateHull(s, 0.0);
   if (check) *check = c;

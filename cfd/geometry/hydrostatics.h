@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "cfd/geometry/surface_repair.h"
 #include "cfd/geometry/triangle_surface.h"
 
 namespace kelvin::cfd {
@@ -23,6 +24,8 @@ struct Hydrostatics {
   double draft = 0;            // m, deepest point below the waterline
   double lwl = 0;              // m, waterline length
   double bwl = 0;              // m, waterline beam
+  double x_min = 1e300;        // m from AP, aftmost point below the waterline
+  double x_max = -1e300;       // m from AP, foremost point below the waterline
   double Cb = 0;               // volume / (Lpp B T)
   double Cm = 0;               // midship section area / (B T)
   double Cwp = 0;              // waterplane area / (Lpp B)
@@ -45,23 +48,32 @@ double SectionArea(const TriangleSurface& surface, double x_section);
 Hydrostatics ComputeHydrostatics(const TriangleSurface& surface, double Lpp, double B, double T, int stations = 21);
 
 // Where a ship file's hull surface is and how it maps to ship axes
-// (section `geometry` of data/ships/<ship>.yaml).
+// (section `geometry` of data/ships/<ship>.yaml). The file's coordinates are
+// first multiplied by length_unit; x_ap and waterline_z are in metres after
+// that scaling (not in file units). A file point p maps to ship axes as
+//   x = s (length_unit p_x - x_ap),  y = s length_unit p_y,
+//   z = length_unit p_z - waterline_z,   s = +1 for bow_direction "+x", -1 for "-x".
 struct HullPlacement {
   std::filesystem::path file;  // resolved path
   double length_unit = 1.0;    // metres per file unit
-  double x_ap = 0.0;           // file x (in metres) of the aft perpendicular
-  double waterline_z = 0.0;    // file z (in metres) of the design waterline
+  double x_ap = 0.0;           // m: x of the aft perpendicular, file x times length_unit
+  double waterline_z = 0.0;    // m: z of the design waterline, file z times length_unit
   bool bow_towards_minus_x = false;
   double Lpp = 0, B = 0, T = 0;  // from `principal`
+  double displacement = 0;       // m^3 from `principal` (0: not given)
   double scale = 1;              // model scale ratio
   std::string name;
+  bool repair = true;            // geometry.repair: repair CAD defects before the checks
+  RepairOptions repair_options;  // geometry.merge_tolerance, geometry.short_edge (m)
 };
 
 // Reads the `ship`, `principal` and `geometry` sections of a ship file.
 HullPlacement LoadHullPlacement(const std::filesystem::path& ship_file);
 // Reads the surface and transforms it to ship axes (x from AP forward, z up
-// from the waterline), then validates it as a hull.
-TriangleSurface LoadHull(const HullPlacement& placement, SurfaceCheck* check = nullptr);
+// from the waterline), repairs it (unless placement.repair is false) and
+// validates it as a hull.
+TriangleSurface LoadHull(const HullPlacement& placement, SurfaceCheck* check = nullptr,
+                         RepairReport* repair = nullptr);
 
 // Half-beam of the Wigley hull y = (B/2)(1 - (2x/L - 1)^2)(1 - (z/T)^2) at x
 // from AP; 0 outside 0 < x < L. Not limited in z: callers decide the range.

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "cfd/geometry/hydrostatics.h"
+#include "cfd/geometry/hull_intake.h"
 #include "cfd/grid/mesh_writer.h"
 #include "cfd/grid/spacing.h"
 #include "data/schema/atomic_file.h"
@@ -239,6 +239,7 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
   const fs::path out = output_override.empty() ? c.output_directory : output_override;
   std::unique_ptr<HullSections> sections;
   TriangleSurface surface;
+  std::string intake;  // the hull intake report, for quality.txt
   double length = 0;
   if (c.wigley) {
     sections = std::make_unique<WigleySections>(c.wigley_length, c.wigley_beam, c.wigley_draft);
@@ -246,7 +247,10 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
   } else {
     HullPlacement placement = LoadHullPlacement(c.ship_file);
     if (!c.hull_file.empty()) placement.file = c.hull_file;
-    surface = LoadHull(placement);
+    const HullIntake in = TakeInHull(placement);
+    surface = in.surface;
+    intake = in.Report();
+    for (const auto& w : in.warnings) fmt::print(stderr, "kelvin mesh: WARNING: {}\n", w);
     if (c.method == MeshMethod::kStructured) sections = std::make_unique<SurfaceSections>(surface);
   }
   std::vector<GridSummary> grids;
@@ -317,6 +321,7 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
     s.y_plus = EstimateYPlus(*mesh, c.reynolds, length);
     s.h = std::cbrt(s.quality.total_volume / s.quality.n_cells);
     if (c.write_vtu) WriteVtu(*mesh, s.directory / "mesh.vtu");
+    if (!intake.empty()) extra += "hull intake:\n" + intake;
     s.report = GridReport(c, *mesh, s, extra);
     data::WriteFileAtomically(s.directory / "quality.txt", s.report);
     grids.push_back(std::move(s));

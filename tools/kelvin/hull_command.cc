@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "cfd/geometry/hydrostatics.h"
+#include "cfd/geometry/hull_intake.h"
 #include "data/schema/h5_file.h"
 #include "tools/kelvin/commands.h"
 
@@ -15,17 +15,20 @@ namespace {
 
 struct HullArgs {
   std::string ship_file;
+  std::string hull_file;
   int stations = 21;
   std::string output;
+  bool no_repair = false;
 };
 
 void RunHull(const HullArgs& a) {
-  const cfd::HullPlacement placement = cfd::LoadHullPlacement(a.ship_file);
-  cfd::SurfaceCheck check;
-  const cfd::TriangleSurface hull = cfd::LoadHull(placement, &check);
-  const cfd::Hydrostatics h = cfd::ComputeHydrostatics(hull, placement.Lpp, placement.B, placement.T, a.stations);
-  fmt::print("{}: {} ({} triangles)\n  check: {}\n{}", placement.name, placement.file.string(), hull.triangles.size(),
-             check.Summary(), h.Report());
+  cfd::HullPlacement placement = cfd::LoadHullPlacement(a.ship_file);
+  if (!a.hull_file.empty()) placement.file = a.hull_file;
+  if (a.no_repair) placement.repair = false;
+  const cfd::HullIntake in = cfd::TakeInHull(placement, a.stations);
+  const cfd::Hydrostatics& h = in.hydrostatics;
+  fmt::print("{}: {}\n{}{}", placement.name, placement.file.string(), in.Report(), h.Report());
+  for (const auto& w : in.warnings) fmt::print(stderr, "kelvin hull: WARNING: {}\n", w);
   if (!a.output.empty()) {
     data::H5Writer out(a.output);
     out.SetAttribute("/", "kelvin_schema", "hydrostatics/1");
@@ -59,6 +62,12 @@ Command AddHullCommand(CLI::App& app) {
   cmd->add_option("ship", args->ship_file, "Ship file with a geometry section (data/ships/<ship>.yaml)")
       ->required()
       ->check(CLI::ExistingFile);
+  cmd->add_option("--hull", args->hull_file,
+                  "Check this surface (STL, STL.gz or OBJ) instead of the ship file's geometry.file, placed by "
+                  "the ship file's geometry keys")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--no-repair", args->no_repair,
+                "Refuse CAD defects instead of repairing them (as geometry.repair: false)");
   cmd->add_option("--stations", args->stations, "Stations of the sectional area curve")
       ->check(CLI::Range(3, 1000))
       ->capture_default_str();
