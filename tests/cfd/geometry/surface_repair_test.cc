@@ -16,6 +16,8 @@
 #include <set>
 
 #include "cfd/geometry/hull_intake.h"
+#include "cfd/grid/hull_grid.h"
+#include "cfd/grid/snappy_mesher.h"
 #include "data/schema/errors.h"
 #include "tests/test_utilities/test_utilities.h"
 
@@ -234,6 +236,30 @@ TEST(SurfaceRepair, AllDefectsTogetherAreRepaired) {
   std::printf("%s", in.Report().c_str());
   EXPECT_TRUE(in.repair.Changed());
   ExpectSameHydrostatics(in);
+}
+
+// The repaired surface meshes (snappyHexMesh, a coarse grid of about 15k
+// cells) to the same hull volume as the clean one within 0.1%.
+TEST(SurfaceRepair, RepairedSurfaceMeshesLikeTheCleanOne) {
+  TriangleSurface s = CleanDtc();
+  SplitVertices(s, 20);
+  AddMicroEdges(s, 3, 2e-6);
+  AddSlivers(s, 8);
+  FlipTriangles(s, 5);
+  ScopedTempDir tmp;
+  const HullIntake in = TakeInHull(PlacementOf(s, tmp.path()));
+  SnappyOptions o;
+  o.reynolds = 9.1e6;
+  o.y_plus = 100;
+  o.base_cells_per_length = 6;
+  o.hull_level = 3;
+  o.wake_level = 1;
+  o.layers = 1;
+  const double clean = HullPatchVolume(RunSnappy(CleanDtc(), o, tmp.path() / "clean"));
+  const double repaired = HullPatchVolume(RunSnappy(in.surface, o, tmp.path() / "repaired"));
+  std::printf("snappy hull patch volume: clean %.9g m^3, repaired %.9g m^3\n", clean, repaired);
+  EXPECT_NEAR(repaired, clean, 1e-3 * clean);
+  EXPECT_NEAR(clean, in.hydrostatics.volume, 0.02 * in.hydrostatics.volume);
 }
 
 TEST(SurfaceRepair, HoleBelowTheWaterlineIsRefused) {
