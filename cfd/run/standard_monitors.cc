@@ -93,6 +93,12 @@ std::vector<std::string> TurbulenceReport::Finish(const PimpleSolver&) {
   for (const WallPatchStats& w : last_) {
     lines.push_back(fmt::format("y+ on {}: min {:.3g}, mean {:.3g}, max {:.3g}", w.patch, w.y_plus_min,
                                 w.y_plus_mean, w.y_plus_max));
+    lines.push_back(YPlusDistribution(w));
+    const std::string warning = YPlusWarning(w);
+    if (!warning.empty()) {
+      spdlog::warn("{}", warning);
+      lines.push_back(warning);
+    }
   }
   return lines;
 }

@@ -348,20 +348,9 @@ std::vector<WallPatchStats> KOmegaSst::WallStats() const {
   for (std::size_t p = 0; p < roles_.size(); ++p) {
     if (roles_[p] != TurbulencePatchRole::kWall) continue;
     const Patch& patch = mesh_.patches()[p];
-    WallPatchStats s;
-    s.patch = patch.name;
-    s.y_plus_min = std::numeric_limits<double>::infinity();
-    double area = 0.0;
-    for (int f = patch.start; f < patch.start + patch.size; ++f) {
-      const double yp = y_plus_[f - ni];
-      s.y_plus_min = std::min(s.y_plus_min, yp);
-      s.y_plus_max = std::max(s.y_plus_max, yp);
-      s.y_plus_mean += yp * mesh_.face_area_magnitudes()[f];
-      area += mesh_.face_area_magnitudes()[f];
-    }
-    if (area > 0.0) s.y_plus_mean /= area;
-    if (patch.size == 0) s.y_plus_min = 0.0;
-    out.push_back(s);
+    const auto n = static_cast<std::size_t>(patch.size);
+    out.push_back(SummarizeWall(patch.name, std::span<const double>(y_plus_).subspan(static_cast<std::size_t>(patch.start - ni), n),
+                                std::span<const double>(mesh_.face_area_magnitudes()).subspan(static_cast<std::size_t>(patch.start), n)));
   }
   return out;
 }

@@ -16,6 +16,7 @@
 #include "cfd/field/field.h"
 #include "cfd/fv/fv_matrix.h"
 #include "cfd/fv/gradient.h"
+#include "cfd/turbulence/wall_stats.h"
 
 namespace kelvin::cfd {
 
@@ -75,14 +76,6 @@ struct TurbulenceSummary {
   // non-zero count is reported; with bounded convection it stays zero).
   int bounded_k = 0;
   int bounded_omega = 0;
-};
-
-// y+ and wall shear statistics of one wall patch.
-struct WallPatchStats {
-  std::string patch;
-  double y_plus_min = 0.0;
-  double y_plus_mean = 0.0;  // area weighted
-  double y_plus_max = 0.0;
 };
 
 // A cell field for output (VTK): components 1 or 3, n_cells * components values.

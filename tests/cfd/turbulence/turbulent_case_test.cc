@@ -2,6 +2,8 @@
 // one clear error per bad turbulence input.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <fstream>
 #include <sstream>
 
@@ -42,6 +44,28 @@ std::string CaseText(double end) {
   std::string s = kCase;
   s.replace(s.find("END"), 3, std::to_string(end));
   return s;
+}
+
+// The y+ guard: the same 20-cell channel is a wall-function grid at
+// Re_H = 1e5 (first-cell y+ about 140 after 10 steps) and far too coarse at
+// Re_H = 1e6 (y+ about 1100 on all of both walls): only the second run
+// warns, and the report gives the area distribution in both.
+TEST(TurbulentCase, YPlusGuardFiresOnAGridTooCoarseForTheReynoldsNumber) {
+  for (const double nu : {1e-5, 1e-6}) {
+    kelvin::testing::ScopedTempDir tmp;
+    std::string text = CaseText(0.5);
+    text.replace(text.find("nu: 1.0e-4"), 10, fmt::format("nu: {:g}", nu));
+    RunOptions o;
+    o.progress = false;
+    const RunSummary s = RunCase(WriteCase(tmp.path(), text), o);
+    ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+    std::printf("nu %g:\n%s\n", nu, s.message.c_str());
+    EXPECT_NE(s.message.find("y+ on ymin by area: <1 "), std::string::npos) << s.message;
+    EXPECT_EQ(s.message.find("WARNING: 100% of the area of 'ymin' has a first-cell y+ of 300 or more") !=
+                  std::string::npos,
+              nu < 5e-6)
+        << s.message;
+  }
 }
 
 TEST(TurbulentCase, WritesTurbulenceOutputsAndStaysPositive) {

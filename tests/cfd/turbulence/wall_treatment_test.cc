@@ -9,9 +9,31 @@
 #include "cfd/mesh/box_mesh.h"
 #include "cfd/turbulence/wall_distance.h"
 #include "cfd/turbulence/wall_functions.h"
+#include "cfd/turbulence/wall_stats.h"
 
 namespace kelvin::cfd {
 namespace {
+
+// Area shares by y+ band, and the guard at its 10% limit: faces of areas
+// 1, 2, 3, 4 at y+ 0.5, 50, 350 and 2000 give shares 0.1, 0.2, 0.3, 0.4 and
+// 70% of the area at y+ >= 300; a patch with 10% there stays quiet.
+TEST(WallStats, AreaSharesByBandAndTheGuard) {
+  const std::vector<double> y_plus{0.5, 50, 350, 2000}, area{1, 2, 3, 4};
+  const WallPatchStats s = SummarizeWall("hull", y_plus, area);
+  EXPECT_DOUBLE_EQ(s.y_plus_min, 0.5);
+  EXPECT_DOUBLE_EQ(s.y_plus_max, 2000);
+  EXPECT_DOUBLE_EQ(s.y_plus_mean, (0.5 + 100 + 1050 + 8000) / 10.0);
+  const std::array<double, 7> expected{0.1, 0, 0, 0.2, 0, 0.3, 0.4};
+  for (std::size_t b = 0; b < expected.size(); ++b) EXPECT_DOUBLE_EQ(s.area_fraction[b], expected[b]) << b;
+  EXPECT_DOUBLE_EQ(s.AreaBeyond(kWallYPlusLimit), 0.7);
+  EXPECT_DOUBLE_EQ(s.AreaBeyond(1000), 0.4);
+  EXPECT_NE(YPlusWarning(s).find("WARNING: 70% of the area of 'hull'"), std::string::npos) << YPlusWarning(s);
+  EXPECT_EQ(YPlusDistribution(s), "y+ on hull by area: <1 10.0%, 1-5 0.0%, 5-30 0.0%, 30-100 20.0%, 100-300 0.0%, "
+                                  "300-1000 30.0%, >=1000 40.0%");
+  const WallPatchStats quiet = SummarizeWall("hull", std::vector<double>{50, 400}, std::vector<double>{9, 1});
+  EXPECT_DOUBLE_EQ(quiet.AreaBeyond(kWallYPlusLimit), 0.1);
+  EXPECT_EQ(YPlusWarning(quiet), "");
+}
 
 TEST(WallLaw, ViscousSublayerIsLinear) {
   // For y+ << 5 Spalding's law is u+ = y+, so u_tau = sqrt(nu U / y).
