@@ -348,15 +348,18 @@ JointFitResult FitCampaign(const data::CaptiveCampaign& campaign, const JointFit
         !(excitation[i] < options.min_joint_excitation) || !TermExponents(kNames[i], &a, &b))
       continue;
     unexcited[i] = true;
+    const std::string missing =
+        a == 0   ? "no run has a yaw rate r' (pure yaw, yaw with drift or circular motion)"
+        : b == 0 ? "no run has a sway velocity v' (static drift or pure sway)"
+                 : "no run moves in v' and r' together (yaw with drift, circular motion with drift)";
     result.note[i] = fmt::format(
         "not excited by the test matrix: |{}| reaches at most {:.2g} of its scale {} over the "
-        "analysed samples (limit {:g}); no run moves in v' and r' together (yaw with drift, "
-        "circular motion with drift)",
+        "analysed samples (limit {:g}); {}",
         Monomial(a, b), excitation[i],
         a == 0 || b == 0 ? Monomial(a, b)
                          : fmt::format("max|v'|{} max|r'|{}", a > 1 ? fmt::format("^{}", a) : "",
                                        b > 1 ? fmt::format("^{}", b) : ""),
-        options.min_joint_excitation);
+        options.min_joint_excitation, missing);
     if (options.fix_unidentifiable) {
       held[i] = true;
       theta[i] = 0.0;
@@ -657,6 +660,13 @@ JointFitResult FitCampaign(const data::CaptiveCampaign& campaign, const JointFit
   for (const RunData& r : runs) result.residuals += 3 * static_cast<int>(r.samples.size());
   if (!result.converged)
     result.warnings.push_back("the solver did not converge: " + result.solver_report);
+  for (const data::CaptiveRun& run : campaign.runs) {
+    if (run.settled != 0) continue;
+    result.warnings.push_back(fmt::format(
+        "run '{}' did not settle (its loads still changed by {:.2g} of |(X, Y)| over the last window): its mean "
+        "includes the start-up transient; run it longer (cfd.steady_duration)",
+        run.name, run.settle_change));
+  }
   return result;
 }
 

@@ -53,6 +53,8 @@ struct Job {
   double dt = 0.0;
   int steps = 0;
   fs::path dir;
+  // Steady runs: the criterion that ends them (none: a fixed duration).
+  std::optional<SteadyOptions> settle;
   State state = State::kLeft;
   int step = 0;
   std::string message;
@@ -73,6 +75,22 @@ PrescribedMotion ToPrescribed(data::MotionKind kind) {
       return PrescribedMotion::kCircularMotion;
   }
   return PrescribedMotion::kStaticDrift;
+}
+
+// The steady criterion of a steady run: X, Y, N / Lpp in ship axes over the
+// campaign's settle window, tested from the end of the ramp plus one window.
+SteadyOptions SettleCriterion(const data::CampaignFile& f, const data::CaptiveShip& ship,
+                              const data::MotionParameters& m) {
+  SteadyOptions o;
+  o.quantities = {SteadyQuantity::kShipLoads};
+  const double window =
+      f.cfd.settle_window > 0 ? f.cfd.settle_window : std::min(2.0 * ship.Lpp / m.U, f.cfd.steady_duration);
+  o.criterion.window = window;
+  o.criterion.window_steps = 5;
+  o.criterion.tolerance = f.cfd.settle_tolerance;
+  o.min_windows = (m.t_ramp + window) / window;
+  o.ship_load_arm = ship.Lpp;
+  return o;
 }
 
 std::vector<Job> PlanJobs(const data::CampaignFile& f, const data::CaptiveShip& ship,
@@ -105,6 +123,7 @@ std::vector<Job> PlanJobs(const data::CampaignFile& f, const data::CaptiveShip& 
       job.dt = case_dt;
       job.steps =
           static_cast<int>(std::llround((f.cfd.steady_ramp + f.cfd.steady_duration) / case_dt));
+      if (f.cfd.settle) job.settle = SettleCriterion(f, ship, m);
     }
     job.dir = f.cfd.directory / run.name;
     jobs.push_back(std::move(job));
@@ -123,8 +142,16 @@ struct RunCost {
   double cells = 0.0;
 };
 
+// Whether a steady run settled: the result file's attributes, read back
+// into the campaign's captive runs.
+struct Settle {
+  int settled = -1;  // -1: no criterion
+  double change = 0.0;
+  double t_settle = 0.0;  // s, start of the settled part
+};
+
 void WriteSamples(const fs::path& path, const std::vector<CaptiveSample>& samples, int step,
-                  int steps, const RunCost& cost) {
+                  int steps, const RunCost& cost, const Settle& settle = {}) {
   data::H5Writer w(path);
   w.SetAttribute("/", "kind", "kelvin captive CFD run samples");
   w.SetAttribute("/", "step", static_cast<double>(step));
@@ -132,6 +159,11 @@ void WriteSamples(const fs::path& path, const std::vector<CaptiveSample>& sample
   w.SetAttribute("/", "cpu_seconds", cost.cpu_seconds);
   w.SetAttribute("/", "courant_max", cost.courant_max);
   w.SetAttribute("/", "cells", cost.cells);
+  if (settle.settled >= 0) {
+    w.SetAttribute("/", "settled", static_cast<double>(settle.settled));
+    w.SetAttribute("/", "settle_change", settle.change);
+    w.SetAttribute("/", "t_settle", settle.t_settle);
+  }
   WriteCaptiveHistory(w, samples);
   w.Commit();
 }
@@ -295,8 +327,8 @@ class JobFiles final : public Monitor {
     WriteSamples(job_.dir / "samples.h5", sampler_.samples(), job_.step, job_.steps, cost_);
     WriteProgressFile(job_, seconds());
   }
-  void WriteResult() const {
-    WriteSamples(job_.dir / "result.h5", sampler_.samples(), job_.step, job_.steps, cost_);
+  void WriteResult(const Settle& settle) const {
+    WriteSamples(job_.dir / "result.h5", sampler_.samples(), job_.step, job_.steps, cost_, settle);
     WriteProgressFile(job_, seconds());
   }
 
@@ -345,6 +377,7 @@ bool ExecuteJob(Context& ctx, Job& job) {
   overrides.motion = job.cfd_motion;
   overrides.dt = job.dt;
   overrides.end_time = job.dt * job.steps;
+  overrides.steady = job.settle;
   fs::create_directories(job.dir);
   const RunLock lock(job);
   const fs::path checkpoint = job.dir / "checkpoint.h5";
@@ -371,7 +404,14 @@ bool ExecuteJob(Context& ctx, Job& job) {
   }
   if (d.status == RunDriverSummary::Status::kStopped) return false;
   job.step = c.solver->step();
-  files.WriteResult();
+  Settle settle;
+  if (job.settle) {
+    settle.settled = d.steady.settled ? 1 : 0;
+    settle.change = d.steady.force_change;
+    settle.t_settle = c.solver->time() - job.settle->criterion.window;
+    job.steps = job.step;  // a settled run ends early
+  }
+  files.WriteResult(settle);
   std::error_code ec;
   fs::remove(checkpoint, ec);
   fs::remove(job.dir / "samples.h5", ec);
@@ -633,6 +673,12 @@ data::CaptiveRun CaptiveRunOf(const Job& job, const std::vector<CaptiveSample>& 
   run.name = job.name;
   run.motion = job.motion;
   run.includes_rigid_body_inertia = false;
+  const data::H5Reader result(job.dir / "result.h5");
+  if (result.HasAttribute("/", "settled")) {
+    run.settled = static_cast<int>(result.NumberAttribute("/", "settled"));
+    run.settle_change = result.NumberAttribute("/", "settle_change");
+    run.t_settle = result.NumberAttribute("/", "t_settle");
+  }
   for (const CaptiveSample& s : samples) {
     const PlanarLoad total = s.loads.Total();
     run.time.push_back(s.time);

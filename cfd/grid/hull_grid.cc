@@ -458,23 +458,19 @@ YPlusEstimate EstimateYPlus(const Mesh& mesh, double reynolds, double length) {
   const int p = mesh.FindPatch("hull");
   if (p < 0) throw DataFileError(fmt::format("{}: no patch named 'hull'", mesh.source()));
   const Patch& patch = mesh.patches()[p];
-  YPlusEstimate e;
-  e.min = 1e300;
-  double area = 0.0;
+  std::vector<double> y_plus, area;
   for (int f = patch.start; f < patch.start + patch.size; ++f) {
     const Vector3 n = mesh.face_areas()[f] / mesh.face_area_magnitudes()[f];
     const double y =
         std::abs((mesh.face_centres()[f] - mesh.cell_centres()[mesh.owner()[f]]).dot(n));
-    const double yp = YPlusAt(y, reynolds, length);
-    e.min = std::min(e.min, yp);
-    e.max = std::max(e.max, yp);
-    e.mean += yp * mesh.face_area_magnitudes()[f];
-    area += mesh.face_area_magnitudes()[f];
+    y_plus.push_back(YPlusAt(y, reynolds, length));
+    area.push_back(mesh.face_area_magnitudes()[f]);
   }
-  if (area > 0)
-    e.mean /= area;
-  else
-    e.min = 0;
+  YPlusEstimate e;
+  e.stats = SummarizeWall("hull", y_plus, area);
+  e.min = e.stats.y_plus_min;
+  e.mean = e.stats.y_plus_mean;
+  e.max = e.stats.y_plus_max;
   return e;
 }
 

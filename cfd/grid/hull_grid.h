@@ -19,6 +19,8 @@
 // outlet (x min), side (y = +-W), bottom (z = -D).
 #pragma once
 
+#include "cfd/turbulence/wall_stats.h"
+
 #include "cfd/grid/hull_sections.h"
 #include "cfd/mesh/mesh.h"
 
@@ -83,9 +85,11 @@ double HullPatchVolume(const Mesh& mesh);
 
 // y+ of the first cell centres on the `hull` patch (wall distance of the
 // owner cell centre, y+ from the ITTC-57 estimate at `reynolds` over
-// `length`): min, mean (area weighted) and max.
+// `length`): min, mean (area weighted), max and the area by y+ band, so the
+// wall guard (cfd/turbulence/wall_stats.h) can warn before a run.
 struct YPlusEstimate {
   double min = 0, mean = 0, max = 0;
+  WallPatchStats stats;
 };
 YPlusEstimate EstimateYPlus(const Mesh& mesh, double reynolds, double length);
 

@@ -223,6 +223,9 @@ std::string GridReport(const MeshCase& c, const Mesh& mesh, const GridSummary& g
   r += fmt::format("hull patch volume (below z = 0): {:.9g} m^3\n", g.hull_volume);
   r += fmt::format("y+ estimate (ITTC-57 C_F at Re = {:.4g}): min {:.3g} mean {:.3g} max {:.3g}\n",
                    c.reynolds, g.y_plus.min, g.y_plus.mean, g.y_plus.max);
+  r += "estimated " + YPlusDistribution(g.y_plus.stats) + "\n";
+  const std::string warning = YPlusWarning(g.y_plus.stats);
+  if (!warning.empty()) r += warning + " (from the y+ estimate, before any run)\n";
   r += fmt::format("h = (V/N)^(1/3) = {:.6g} m\nmeshing time {:.3f} s\npatches:", g.h, g.seconds);
   for (const Patch& p : mesh.patches())
     r += fmt::format(" {}({} {})", p.name, PatchKindName(p.kind), p.size);

@@ -253,7 +253,9 @@ void CheckRunSections(const ConfigNode& root, const Case& c) {
   if (s.time.steady && c.force_patches.empty()) {
     for (SteadyQuantity q : s.time.steady->quantities) {
       if (q != SteadyQuantity::kEta) {
-        root["time"]["steady"]["quantities"].Fail("output.forces naming the patches whose force decides when the run is steady");
+        const std::string expected = "output.forces naming the patches whose force decides when the run is steady";
+        if (root["time"].Has("steady")) root["time"]["steady"]["quantities"].Fail(expected);
+        throw ConfigError(fmt::format("{}: the steady criterion set for this run: expected {}", root.source(), expected));
       }
     }
   }
@@ -261,6 +263,13 @@ void CheckRunSections(const ConfigNode& root, const Case& c) {
     for (SteadyQuantity q : s.time.steady->quantities) {
       if (q == SteadyQuantity::kEta && !c.free_surface) {
         root["time"]["steady"]["quantities"].Fail("no eta: the case has no linearizedFreeSurface patch");
+      }
+      if (q == SteadyQuantity::kShipLoads &&
+          (!c.motion || !(s.reference.length > 0.0 || s.time.steady->ship_load_arm > 0.0))) {
+        throw ConfigError(fmt::format(
+            "{}: time.steady quantity ship_loads: expected a motion: section (the ship axes) and reference.length "
+            "(the arm that scales N)",
+            root.source()));
       }
       if (q == SteadyQuantity::kDrag && s.reference.speed == 0.0) {
         root["time"]["steady"]["quantities"].Fail("force instead of drag, or a reference: {speed, direction} section (the drag direction)");
@@ -330,6 +339,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
     c.motion = std::make_unique<RigidMeshMotion>(*c.mesh, RigidMotion(LoadMotionOptions(root["motion"])));
   }
   if (overrides.dt > 0.0) s.time.dt = overrides.dt;
+  if (overrides.steady) s.time.steady = overrides.steady;
   // A harmonic motion with `periods` sets the end time.
   const double motion_end = c.motion && c.motion->prescribed() ? c.motion->prescribed()->options().EndTime() : 0.0;
   const ConfigNode t = root["time"];

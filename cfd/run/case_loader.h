@@ -100,6 +100,7 @@ struct CaseOverrides {
   double end_time = 0.0;                // > 0: replaces time.end (s)
   std::filesystem::path poly_mesh;      // non-empty: replaces mesh.poly_mesh
   std::filesystem::path output;         // non-empty: replaces output.directory
+  std::optional<SteadyOptions> steady;  // replaces time.steady (window in seconds)
 };
 
 Case LoadCase(const data::ConfigNode& root, const std::filesystem::path& case_dir,

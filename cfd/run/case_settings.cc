@@ -41,7 +41,7 @@ CaseReference ReadReference(const ConfigNode& n) {
 
 SteadyOptions ReadSteady(const ConfigNode& n) {
   if (!n.Has("quantities")) {
-    n.Fail("a quantities list (drag, force, eta): the steady criterion changed, its window is now seconds of "
+    n.Fail("a quantities list (drag, force, eta, ship_loads): the steady criterion changed, its window is now seconds of "
            "pseudo-time and window_steps counts steps (see cfd/README.md, 'Older case files')");
   }
   n.ExpectKeys({"quantities", "tolerance", "window", "window_steps", "min_windows", "min_steps"});
@@ -54,8 +54,10 @@ SteadyOptions ReadSteady(const ConfigNode& n) {
       o.quantities.push_back(SteadyQuantity::kForce);
     } else if (q == "eta") {
       o.quantities.push_back(SteadyQuantity::kEta);
+    } else if (q == "ship_loads") {
+      o.quantities.push_back(SteadyQuantity::kShipLoads);
     } else {
-      item.Fail("one of drag, force, eta");
+      item.Fail("one of drag, force, eta, ship_loads");
     }
   }
   o.criterion.tolerance = n.Get<double>("tolerance", o.criterion.tolerance);

@@ -63,8 +63,19 @@ struct CoreColumns {
   }
 };
 
+// X, Y and N / L in ship axes about the motion's centre, scaled by |(X, Y)|.
+SteadyGroup ShipLoadGroup(const Case& c, const StepForces& forces, double time) {
+  std::vector<const PatchFaceForces*> faces;
+  for (int k : c.force_patches) faces.push_back(&forces.Faces(k));
+  const BodyKinematics& body = c.motion->body();
+  const PlanarLoad l = SumHullLoads(*c.mesh, c.force_patches, faces, body.At(time), body.centre()).Total();
+  const double arm = c.settings.time.steady->ship_load_arm > 0.0 ? c.settings.time.steady->ship_load_arm
+                                                                 : c.settings.reference.length;
+  return {{l.X, l.Y, l.N / arm}, std::hypot(l.X, l.Y)};
+}
+
 // The groups of the steady criterion at this step.
-std::vector<SteadyGroup> SteadyGroups(const Case& c, const StepForces& forces) {
+std::vector<SteadyGroup> SteadyGroups(const Case& c, const StepForces& forces, double time) {
   std::vector<SteadyGroup> groups;
   const auto& steady = c.settings.time.steady;
   if (!steady) return groups;
@@ -77,6 +88,8 @@ std::vector<SteadyGroup> SteadyGroups(const Case& c, const StepForces& forces) {
     } else if (q == SteadyQuantity::kForce) {
       const Vector3 t = f.total();
       groups.push_back({{t.x(), t.y(), t.z()}, t.norm()});
+    } else if (q == SteadyQuantity::kShipLoads) {
+      groups.push_back(ShipLoadGroup(c, forces, time));
     }
   }
   return groups;
@@ -250,7 +263,7 @@ RunDriverSummary Loop::Run() {
       break;
     }
     forces_.Compute(solver_, patches_, c_.settings.rho, c_.settings.nu);
-    time_control_.Record(solver_, SteadyGroups(c_, forces_), SteadyEta(c_));
+    time_control_.Record(solver_, SteadyGroups(c_, forces_, solver_.time()), SteadyEta(c_));
     StepRecord record{s, forces_, time_control_.status()};
     record.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     record.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;

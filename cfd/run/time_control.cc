@@ -18,7 +18,7 @@ constexpr const char* kOldReleaseScalar = "resistance_release_time";  // checkpo
 
 void SteadyOptions::Validate() const {
   criterion.Validate();
-  if (quantities.empty()) throw ConfigError("quantities: expected at least one of drag, force, eta");
+  if (quantities.empty()) throw ConfigError("quantities: expected at least one of drag, force, eta, ship_loads");
   if (!(min_windows >= 1.0) || !std::isfinite(min_windows)) {
     throw ConfigError(fmt::format("min_windows = {}; expected >= 1", min_windows));
   }

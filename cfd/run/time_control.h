@@ -11,7 +11,9 @@
 //     initial_velocity: false  # start from the reference velocity (reference.speed along reference.direction)
 //     steady:
 //       quantities: [drag, eta]  # drag: R_T, R_P, R_F along reference.direction, by |R_T|;
-//                                # force: the force vector, by |F|; eta: the free-surface elevation
+//                                # force: the force vector, by |F|; eta: the free-surface elevation;
+//                                # ship_loads: X, Y and N / reference.length in ship axes about
+//                                # the motion's centre, by |(X, Y)| (captive static drift)
 //       tolerance: 1.0e-3
 //       window: 0              # s of pseudo-time; omitted: one flow-through (needs reference.speed)
 //       window_steps: 20       # the window spans at least this many steps
@@ -37,7 +39,7 @@ namespace kelvin::cfd {
 class LinearizedFreeSurface;
 class PimpleSolver;
 
-enum class SteadyQuantity { kDrag, kForce, kEta };
+enum class SteadyQuantity { kDrag, kForce, kEta, kShipLoads };
 
 struct SteadyOptions {
   std::vector<SteadyQuantity> quantities;
@@ -45,6 +47,7 @@ struct SteadyOptions {
   bool window_is_flow_through = false;  // the window was left to default to one flow-through
   double min_windows = 2.0;
   int min_steps = 0;
+  double ship_load_arm = 0.0;  // m, scales N in ship_loads; 0: reference.length (a campaign sets Lpp)
   void Validate() const;
 };
 

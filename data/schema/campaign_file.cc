@@ -39,6 +39,28 @@ std::vector<double> PositiveList(const ConfigNode& node, const char* key) {
 
 }  // namespace
 
+namespace {
+
+// `cfd.settle`: false, or {tolerance, window}.
+void ReadSettle(const ConfigNode& n, CampaignFile::Cfd& cfd) {
+  if (n.IsScalar()) {
+    cfd.settle = n.As<bool>();
+    return;
+  }
+  n.ExpectKeys({"tolerance", "window"});
+  if (n.Has("tolerance")) {
+    cfd.settle_tolerance = n.GetPositive("tolerance");
+    if (cfd.settle_tolerance >= 1.0) n["tolerance"].Fail("a relative change in (0, 1)");
+  }
+  if (n.Has("window")) cfd.settle_window = n.GetPositive("window");
+  if (cfd.settle_window > cfd.steady_duration) {
+    n["window"].Fail(fmt::format("at most steady_duration = {} s (the window must fit in the run)",
+                                 cfd.steady_duration));
+  }
+}
+
+}  // namespace
+
 CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
   const auto root = ConfigNode::LoadFile(path);
   root.ExpectKeys({"campaign", "tests", "sampling", "cfd"});
@@ -105,7 +127,7 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
     if (f.noise > 0) c["noise"].Fail("0: noise is for the mmg solver only");
     const auto n = root["cfd"];
     n.ExpectKeys({"case", "hull_patches", "centre", "draft", "steps_per_period", "motion_ramp_periods",
-                  "steady_ramp", "steady_duration", "checkpoint_interval", "jobs", "directory"});
+                  "steady_ramp", "steady_duration", "settle", "checkpoint_interval", "jobs", "directory"});
     CampaignFile::Cfd& cfd = f.cfd;
     cfd.case_file = n.Get<std::string>("case");
     if (cfd.case_file.is_relative()) cfd.case_file = path.parent_path() / cfd.case_file;
@@ -129,6 +151,7 @@ CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
     }
     if (n.Has("steady_ramp")) cfd.steady_ramp = n.GetPositive("steady_ramp");
     if (n.Has("steady_duration")) cfd.steady_duration = n.GetPositive("steady_duration");
+    if (auto s = n.Find("settle")) ReadSettle(*s, cfd);
     cfd.checkpoint_interval = n.Get<int>("checkpoint_interval", cfd.checkpoint_interval);
     if (cfd.checkpoint_interval < 1) n["checkpoint_interval"].Fail("a number of steps >= 1");
     cfd.jobs = n.Get<int>("jobs", cfd.jobs);

@@ -34,7 +34,11 @@
 //                                  # (default sampling.ramp_periods); the analysis still discards
 //                                  # sampling.ramp_periods periods, the rest settle at full motion
 //     steady_ramp: 2.0             # s, start-up of steady runs
-//     steady_duration: 10.0        # s, steady runs after the ramp (dt from the case)
+//     steady_duration: 10.0        # s, steady runs after the ramp at most (dt from the case)
+//     settle: {tolerance: 0.01, window: 2.0}   # steady runs end once X, Y, N/Lpp (ship axes)
+//                                  # change by < tolerance |(X, Y)| over window s (default
+//                                  # window: min(2 Lpp / U, steady_duration)); the analysis uses
+//                                  # that window; settle: false keeps the fixed duration
 //     checkpoint_interval: 50      # steps
 //     jobs: 1                      # runs executed at the same time (processes)
 //     directory: runs/block        # run directories (default results/<name>, relative to this file)
@@ -78,7 +82,13 @@ struct CampaignFile {
     // let the start-up disturbance leave the grid before the analysis).
     int motion_ramp_periods = 1;
     double steady_ramp = 2.0;       // s
-    double steady_duration = 10.0;  // s
+    double steady_duration = 10.0;  // s, the longest a steady run goes on after the ramp
+    // Steady runs end once X, Y and N / Lpp in ship axes change by less than
+    // settle_tolerance |(X, Y)| over settle_window seconds (and not before
+    // steady_ramp + settle_window); the analysis then uses that last window.
+    bool settle = true;
+    double settle_tolerance = 0.01;
+    double settle_window = 0;  // s; 0: the smaller of 2 Lpp / U and steady_duration
     int checkpoint_interval = 50;   // steps
     int jobs = 1;
     std::filesystem::path directory;  // run directories

@@ -102,6 +102,11 @@ void WriteCampaignH5(const CaptiveCampaign& campaign, const fs::path& path) {
       w.SetAttribute(g, std::string(a.key), run.motion.*a.member);
     w.SetAttribute(g, "rigid_body_inertia",
                    run.includes_rigid_body_inertia ? "included" : "excluded");
+    if (run.settled >= 0) {
+      w.SetAttribute(g, "t_settle", run.t_settle);
+      w.SetAttribute(g, "settled", static_cast<double>(run.settled));
+      w.SetAttribute(g, "settle_change", run.settle_change);
+    }
     w.DeclareSeries(g + "/time", "s", "time from the start of the prescribed motion");
     w.Append(g + "/time", run.time);
     for (int c = 0; c < 3; ++c) {
@@ -151,6 +156,18 @@ CaptiveCampaign ReadCampaignH5(const fs::path& path) {
     }
     run.includes_rigid_body_inertia =
         ParseRigidBodyInertia(r.StringAttribute(g, "rigid_body_inertia"), where);
+    if (r.HasAttribute(g, "settled")) {
+      const double settled = r.NumberAttribute(g, "settled");
+      if (settled != 0.0 && settled != 1.0) {
+        throw DataFileError(fmt::format("{}: attribute 'settled' = {}: expected 0 or 1", where, settled));
+      }
+      run.settled = static_cast<int>(settled);
+      run.t_settle = r.HasAttribute(g, "t_settle") ? r.NumberAttribute(g, "t_settle") : 0.0;
+      run.settle_change = r.HasAttribute(g, "settle_change") ? r.NumberAttribute(g, "settle_change") : 0.0;
+      if (!std::isfinite(run.t_settle) || run.t_settle < 0.0) {
+        throw DataFileError(fmt::format("{}: attribute 't_settle' = {}: expected a time >= 0 s", where, run.t_settle));
+      }
+    }
     auto read_channel = [&](std::string_view channel, std::string_view units) {
       const std::string ds = g + "/" + std::string(channel);
       if (!r.Has(ds))

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -101,13 +102,24 @@ std::array<double, 3> RigidBodyInertia(const CaptiveShip& ship, const BodyKinema
           (ship.I_zG + m * xg * xg) * k.dr + m * xg * (k.dv + k.u * k.r)};
 }
 
+std::string DescribeWindow(const CaptiveRun& run, std::size_t begin, std::size_t end) {
+  if (end <= begin || end > run.time.size()) return "no samples";
+  const std::string state = run.settled == 1   ? fmt::format("settled, change {:.2g} over the window", run.settle_change)
+                            : run.settled == 0 ? fmt::format("NOT settled, change {:.2g} over the last window",
+                                                             run.settle_change)
+                                               : std::string("no steady criterion");
+  return fmt::format("t = {:.4g} to {:.4g} s ({} samples; {})", run.time[begin], run.time[end - 1], end - begin,
+                     state);
+}
+
 AnalysisWindow SelectWindow(const CaptiveRun& run, std::string_view source) {
   const std::vector<double>& t = run.time;
   AnalysisWindow w;
   if (t.empty()) Fail(source, run.name, "channel 'time' is empty");
   const double t_end = t.back();
   if (!IsHarmonic(run.motion.kind)) {
-    while (w.begin < t.size() && t[w.begin] < run.motion.t_ramp) ++w.begin;
+    const double t0 = std::max(run.motion.t_ramp, run.t_settle);
+    while (w.begin < t.size() && t[w.begin] < t0) ++w.begin;
     w.end = t.size();
     if (w.end - w.begin < static_cast<std::size_t>(kMinSteadySamples)) {
       Fail(source, run.name,
@@ -115,6 +127,12 @@ AnalysisWindow SelectWindow(const CaptiveRun& run, std::string_view source) {
                        "last t = {} s); "
                        "a steady run needs at least {}",
                        w.end - w.begin, run.motion.t_ramp, t_end, kMinSteadySamples));
+    }
+    if (run.t_settle > run.motion.t_ramp && w.end - w.begin < static_cast<std::size_t>(kMinSteadySamples)) {
+      Fail(source, run.name,
+           fmt::format("channels 'X', 'Y', 'N': {} samples in the settled part (t >= t_settle = {} s); a steady run "
+                       "needs at least {}",
+                       w.end - w.begin, run.t_settle, kMinSteadySamples));
     }
     return w;
   }

@@ -81,6 +81,14 @@ struct CaptiveRun {
   // reads: the hydrodynamic force minus the rigid-body inertia force
   // (F_hyd - M_RB a). False when they are the hydrodynamic force alone (CFD).
   bool includes_rigid_body_inertia = false;
+  // Steady runs that ended on a steady criterion (a CFD campaign's static
+  // drift): the analysis uses the samples from max(t_ramp, t_settle), the
+  // settled part. settled: 1 when the criterion was met, 0 when the run hit
+  // its longest duration first, -1 when no criterion was applied; change is
+  // the criterion's relative change over its window at the end.
+  double t_settle = 0;  // s
+  int settled = -1;
+  double settle_change = 0;
   std::vector<double> time;                  // s, strictly increasing
   std::array<std::vector<double>, 3> force;  // X [N], Y [N], N [N m]
 };
@@ -97,6 +105,9 @@ struct CaptiveCampaign {
 //   N_RB = (I_zG + m x_G^2) dr + m x_G (dv + u r)
 // (the left-hand side of the MMG motion equations without added masses).
 std::array<double, 3> RigidBodyInertia(const CaptiveShip& ship, const BodyKinematics& k);
+
+// "t = a to b s (n samples; settled: change c over the window)" for reports.
+std::string DescribeWindow(const CaptiveRun& run, std::size_t begin, std::size_t end);
 
 // Checks the ship data and every run: known motion parameters in range,
 // matching series lengths, strictly increasing time, finite forces, and at

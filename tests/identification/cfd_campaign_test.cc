@@ -22,6 +22,7 @@
 #include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
+#include "identification/joint_fit.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
@@ -211,6 +212,70 @@ TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
   const data::H5Reader r(s.output);
   EXPECT_DOUBLE_EQ(r.Read("/runs/drift_+5.0deg/Y_prime").values.back(), y_plus / 500.0);
   EXPECT_EQ(r.StringAttribute("/", "solver"), "cfd");
+}
+
+// Static drift ends on the steady criterion of X, Y and N / Lpp in ship axes
+// (cfd.settle), here with up to 14 s after the ramp: with a 1% tolerance
+// over 1 s the runs stop early, record
+// that they settled and where the settled part starts, and the analysis uses
+// that part only, whose mean is nearer the end of a run held to its longest
+// duration than the mean of every sample after the ramp is. With a
+// tolerance no run can meet, the runs go to their longest duration, record
+// that they did not settle, and the fit warns about each.
+TEST(CfdCampaign, StaticDriftRunsEndOnTheSteadyCriterion) {
+  ScopedTempDir tmp;
+  auto campaign = [&](const std::string& dir, const std::string& settle) {
+    std::string text = ReadText(WriteCampaign(tmp / dir));
+    const std::string from = "  steady_duration: 4.0\n";
+    text.replace(text.find(from), from.size(), "  steady_duration: 14.0\n  settle: " + settle + "\n");
+    const fs::path path = tmp / dir / "campaign.yaml";
+    std::ofstream(path) << text;
+    const CampaignRunSummary s = RunCfdCampaign(data::LoadCampaignFile(path), Quiet());
+    EXPECT_TRUE(s.complete);
+    return data::ReadCampaignH5(s.output);
+  };
+  const data::CaptiveCampaign loose = campaign("loose", "{tolerance: 0.01, window: 1.0}");
+  const data::CaptiveCampaign strict = campaign("strict", "{tolerance: 1.0e-9, window: 1.0}");
+  for (std::size_t r = 0; r < loose.runs.size(); ++r) {
+    const data::CaptiveRun& a = loose.runs[r];
+    const data::CaptiveRun& b = strict.runs[r];
+    if (data::IsHarmonic(a.motion.kind)) {
+      EXPECT_EQ(a.settled, -1) << a.name;
+      continue;
+    }
+    const data::AnalysisWindow wa = data::SelectWindow(a, "loose"), wb = data::SelectWindow(b, "strict");
+    std::printf("%s: loose %s; strict %s\n", a.name.c_str(), data::DescribeWindow(a, wa.begin, wa.end).c_str(),
+                data::DescribeWindow(b, wb.begin, wb.end).c_str());
+    EXPECT_EQ(a.settled, 1) << a.name;
+    EXPECT_LT(a.settle_change, 0.01) << a.name;
+    EXPECT_LT(a.time.back(), b.time.back() - 0.5) << a.name << " did not end early";
+    EXPECT_NEAR(a.t_settle, a.time.back() - 1.0, 1e-9) << a.name;
+    EXPECT_GE(a.time[wa.begin], a.t_settle - 1e-9) << a.name;
+    EXPECT_EQ(b.settled, 0) << b.name;
+    EXPECT_NEAR(b.time.back(), 15.0, 1e-6) << b.name;
+    auto mean = [](const data::CaptiveRun& run, const data::AnalysisWindow& w, int c) {
+      double sum = 0;
+      for (std::size_t i = w.begin; i < w.end; ++i) sum += run.force[c][i];
+      return sum / static_cast<double>(w.end - w.begin);
+    };
+    // The settled part is nearer the long run's end than every sample after
+    // the ramp (what the analysis used before) is.
+    data::CaptiveRun unsettled = a;
+    unsettled.t_settle = 0;
+    const data::AnalysisWindow wr = data::SelectWindow(unsettled, "loose");
+    for (int c = 0; c < 2; ++c) {
+      const double end = mean(b, wb, c), settled = mean(a, wa, c), after_ramp = mean(a, wr, c);
+      std::printf("  %s: long run's last second %.6g, settled part %.6g, after the ramp %.6g\n", c ? "Y" : "X", end,
+                  settled, after_ramp);
+      if (std::abs(end) < 1e-6 * std::abs(mean(b, wb, 0))) continue;  // Y at zero drift
+      EXPECT_LT(std::abs(settled - end), std::abs(after_ramp - end)) << a.name << " " << c;
+    }
+  }
+  ident::JointFitOptions o;
+  const ident::JointFitResult fit = ident::FitCampaign(strict, o, "strict");
+  int warned = 0;
+  for (const std::string& w : fit.warnings) warned += w.find("did not settle") != std::string::npos ? 1 : 0;
+  EXPECT_EQ(warned, 3);
 }
 
 // cfd.motion_ramp_periods: the motion ramps up over fewer periods than the

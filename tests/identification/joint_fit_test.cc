@@ -117,6 +117,22 @@ TEST(JointFitTest, CrossTermsWithoutNoiseAreFlaggedOrExact) {
 // centreline has v' = -psi^3 / 3 + ..., so the cross terms v' r'^2 and
 // v'^2 r' have tiny columns that can absorb such an error; the 25% rule
 // alone lets them through because the whitened noise level is tiny.
+// A campaign without pure yaw (static drift and pure sway only): the terms
+// in r' alone are flagged as unexcited, and the warning names what is
+// missing, a run with a yaw rate (not a run that combines v' and r').
+TEST(JointFitTest, MissingYawRunsAreNamedInTheWarning) {
+  const sim::ShipParameters ship = Kvlcc2();
+  data::CaptiveCampaign c = StandardCampaign(ship, false, false);
+  std::erase_if(c.runs, [](const data::CaptiveRun& run) { return run.motion.kind == data::MotionKind::kPureYaw; });
+  const JointFitResult fit = FitCampaign(c, {}, "no yaw");
+  for (int i : {kYr, kNr}) {
+    SCOPED_TRACE(std::string(kNames[i]));
+    EXPECT_EQ(fit.status[i], CoefficientStatus::kNotIdentifiable);
+    EXPECT_NE(fit.note[i].find("no run has a yaw rate r' (pure yaw"), std::string::npos) << fit.note[i];
+    EXPECT_EQ(fit.note[i].find("v' and r' together"), std::string::npos) << fit.note[i];
+  }
+}
+
 TEST(JointFitTest, UnexcitedCrossTermsAreFlaggedWithModelError) {
   const sim::ShipParameters ship = Kvlcc2();
   data::CaptiveCampaign c = StandardCampaign(ship, false, false);

@@ -152,6 +152,11 @@ void RunIdentify(const IdentifyArgs& a) {
     fmt::print("{:<11} {:>12.6g} {:>11.3g}  {}\n", sim::HullCoefficients<double>::kNames[i],
                fit.coefficients[i], fit.std_error[i], ident::CoefficientStatusName(fit.status[i]));
   }
+  for (std::size_t r = 0; r < pmm.runs.size(); ++r) {
+    if (data::IsHarmonic(pmm.runs[r].kind)) continue;
+    fmt::print("samples used, run {}: {}\n", pmm.runs[r].run,
+               data::DescribeWindow(campaign.runs[r], pmm.runs[r].window.begin, pmm.runs[r].window.end));
+  }
   for (const std::string& w : fit.warnings) fmt::print("warning: {}\n", w);
   fmt::print("  written: {}\n  written: {}\n", yaml_path.string(), h5_path.string());
 }
