@@ -4,6 +4,8 @@
 // display are off unless asked for, and when asked for without an address
 // they go to 127.0.0.1 (the display's listening socket is checked in the
 // kernel's table by http_display_test; NMEA's default by bridge_cli_test).
+// What the bridge receives follows the multicast route: where the group is
+// joined on a network interface, the bridge says so.
 #include <arpa/inet.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -20,6 +22,7 @@
 #include <set>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "bridge/bridge.h"
 #include "bridge/http_display.h"
@@ -145,6 +148,43 @@ TEST(BridgeLoopback, ANonZeroTtlIsWarnedAbout) {
   EXPECT_EQ(UdpmTtl("udpm://239.255.76.67:7667?ttl=x"), std::nullopt);
   EXPECT_EQ(UdpmTtl("memq://"), std::nullopt);
   EXPECT_EQ(UdpmTtl("file:///tmp/log?mode=w"), std::nullopt);
+}
+
+TEST(BridgeLoopback, TheInterfacesThatJoinedAGroupAreReadFromTheKernelsTable) {
+  const std::string igmp =
+      "Idx\tDevice    : Count Querier\tGroup    Users Timer\tReporter\n"
+      "1\tlo        :     1      V3\n"
+      "\t\t\t\t010000E0     1 0:00000000\t\t0\n"
+      "4\teth0      :     2      V3\n"
+      "\t\t\t\t434CFFEF     7 0:00000000\t\t0\n"
+      "\t\t\t\t010000E0     1 0:00000000\t\t0\n";
+  EXPECT_EQ(MulticastMembers(igmp, "239.255.76.67"), std::vector<std::string>{"eth0"});
+  EXPECT_EQ(MulticastMembers(igmp, "224.0.0.1"), (std::vector<std::string>{"lo", "eth0"}));
+  EXPECT_TRUE(MulticastMembers(igmp, "239.255.76.68").empty());
+  EXPECT_TRUE(MulticastMembers(igmp, "not an address").empty());
+  EXPECT_EQ(UdpmGroup("udpm://239.255.76.67:7667?ttl=0"), "239.255.76.67");
+  EXPECT_EQ(UdpmGroup("udpm://239.255.0.9"), "239.255.0.9");
+  EXPECT_EQ(UdpmGroup("memq://"), std::nullopt);
+}
+
+// Whether other machines can send to the bridge follows the multicast route:
+// warned about unless it is loopback.
+TEST(BridgeLoopback, AGroupJoinedOnANetworkInterfaceIsWarnedAbout) {
+  if (const std::string why = testing::MulticastProblem(); !why.empty()) GTEST_SKIP() << why;
+  const std::string route = testing::RunCommand(std::string("ip route get ") + testing::kLcmGroup).output;
+  const std::size_t dev = route.find(" dev ");
+  ASSERT_NE(dev, std::string::npos) << route;
+  const std::string device = route.substr(dev + 5, route.find(' ', dev + 5) - dev - 5);
+  const std::string url = testing::UniqueUdpmUrl();
+  const auto r = testing::RunCommand(Bridge("--lcm-url '" + url + "' --duration 0.2 --speedup 10"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string warning = "LCM " + url + ": the multicast group 239.255.76.67 is joined on " + device +
+                              ": other machines on that network can send to KELVIN_HELM";
+  if (device == "lo") {
+    EXPECT_THAT(r.output, ::testing::Not(HasSubstr("is joined on"))) << r.output;
+  } else {
+    EXPECT_THAT(r.output, HasSubstr(warning)) << r.output;
+  }
 }
 
 TEST(BridgeLoopback, TheDefaultUrlIsLoopbackUnlessLcmDefaultUrlSaysOtherwise) {

@@ -1,12 +1,16 @@
 // kelvin bridge: the simulator in real time over LCM, helm commands in,
 // ship state, maneuver events and NMEA 0183 out.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <fstream>
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -91,6 +95,24 @@ std::unique_ptr<bridge::HttpDisplay> StartDisplay(const BridgeArgs& a, const sim
   return display;
 }
 
+// Where the multicast group is joined on a network interface, other
+// machines there reach the helm channel (TTL 0 only keeps what is sent here).
+void WarnIfOtherMachinesCanSend(const std::string& lcm_url, const std::string& helm_channel) {
+  const std::optional<std::string> group = bridge::UdpmGroup(lcm_url);
+  if (!group) return;
+  std::ifstream igmp("/proc/net/igmp");
+  std::stringstream text;
+  text << igmp.rdbuf();
+  std::vector<std::string> outside;
+  for (const std::string& device : bridge::MulticastMembers(text.str(), *group)) {
+    if (device != "lo") outside.push_back(device);
+  }
+  if (outside.empty()) return;
+  spdlog::warn("LCM {}: the multicast group {} is joined on {}: other machines on that network can send to {} (the "
+               "helm filter and --helm-source still apply); 'ip route add 224.0.0.0/4 dev lo' keeps it on this machine",
+               lcm_url, *group, fmt::join(outside, ", "), helm_channel);
+}
+
 void PrintPageCounters(const bridge::PageCounters& p) {
   fmt::print("  display: {} page helm orders queued; dropped: {} without the helm, {} malformed, {} oversized, {} bad "
              "requests, {} while the inbox was full; {} streams refused\n",
@@ -134,6 +156,7 @@ void RunBridge(BridgeArgs& a) {
                  *ttl);
   }
   bridge::Bridge bridge(ship, o, lcm);
+  WarnIfOtherMachinesCanSend(lcm_url, bridge.helm_channel());
   bridge::DisplayFeed feed;
   const std::unique_ptr<bridge::HttpDisplay> display = StartDisplay(a, ship, assessment, feed);
   if (display) bridge.SetDisplay(&feed);
