@@ -21,6 +21,7 @@ namespace {
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kHelmQueueCapacity = 10000;
+constexpr int kDrainAtLeast = 256;  // messages per drain whatever the time
 
 double WrapTwoPi(double a) {
   double w = std::fmod(a, kTwoPi);
@@ -215,12 +216,13 @@ void Bridge::PublishEvent(std::int8_t kind, int index, double overshoot, double 
 
 void Bridge::DrainLcm() {
   // Never blocks: handleTimeout(0) returns 0 at once when nothing is queued.
-  // Bounded in time, so a flood of helm messages cannot starve the
-  // simulation: what is left waits in LCM's queue for the next period.
+  // The first 256 messages always; beyond them bounded in time, so a flood
+  // of helm messages cannot starve the simulation: what is left waits in
+  // LCM's queue for the next period.
   const std::int64_t until = MonotonicNanoseconds() + drain_budget_ns_;
-  while (lcm_.handleTimeout(0) > 0) {
+  for (int n = 1; lcm_.handleTimeout(0) > 0; ++n) {
     ++summary_.lcm_messages_handled;
-    if (MonotonicNanoseconds() >= until) {
+    if (n >= kDrainAtLeast && MonotonicNanoseconds() >= until) {
       ++summary_.helm_drains_cut;
       break;
     }

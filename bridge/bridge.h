@@ -5,7 +5,7 @@
 // and optionally sends NMEA 0183 over UDP.
 //
 // The loop per state message: compute the next state (drain LCM without
-// blocking, for at most a quarter of the period; apply the latest accepted
+// blocking: 256 messages, more for up to a quarter of the period; apply the latest accepted
 // helm order; take the integrator steps),
 // sleep until its absolute wall-clock deadline, publish. Nothing in the loop
 // allocates or throws; all set-up happens in the constructor.
@@ -66,7 +66,7 @@ struct BridgeSummary {
   long events_published = 0;
   long publish_failures = 0;
   long lcm_messages_handled = 0;
-  long helm_drains_cut = 0;  // LCM drains stopped at their time budget (a quarter of the wall-clock period)
+  long helm_drains_cut = 0;  // LCM drains stopped at their time budget (256 messages, then a quarter of the period)
   HelmCounters helm;
   long helm_ignored_scripted = 0;  // accepted orders that arrived while a script was steering
   long late_ticks = 0;

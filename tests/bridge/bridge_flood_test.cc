@@ -23,6 +23,7 @@
 #include "bridge/bridge.h"
 #include "bridge/helm_abuse.h"
 #include "bridge/helm_flood.h"
+#include "bridge/listener.h"
 #include "tests/bridge/running_bridge.h"
 #include "tests/bridge/udpm_loopback.h"
 
@@ -34,15 +35,6 @@ using testing::RunningBridge;
 constexpr HelmVerdict kVerdicts[] = {HelmVerdict::kAccepted,   HelmVerdict::kClamped, HelmVerdict::kMalformed,
                                      HelmVerdict::kNotFinite,  HelmVerdict::kOutOfRange, HelmVerdict::kStale,
                                      HelmVerdict::kFuture,     HelmVerdict::kUnknownSource};
-
-bool Finite(const kelvin::ship_state_t& s) {
-  for (double v : {s.t, s.x, s.y, s.latitude, s.longitude, s.heading, s.u, s.v, s.r, s.speed_over_ground,
-                   s.course_over_ground, s.drift_angle, s.rudder_angle, s.rudder_order, s.propeller_rps,
-                   s.propeller_rps_order}) {
-    if (!std::isfinite(v)) return false;
-  }
-  return true;
-}
 
 TEST(BridgeFlood, EveryKindOfHelmMessageIsCountedUnderItsReasonAndNoneRejectedSteers) {
   if (const std::string why = testing::MulticastProblem(); !why.empty()) GTEST_SKIP() << why;
@@ -90,7 +82,7 @@ TEST(BridgeFlood, EveryKindOfHelmMessageIsCountedUnderItsReasonAndNoneRejectedSt
   ASSERT_GE(states.size(), 10u);
   std::set<std::pair<double, double>> in_force;
   for (const auto& st : states) {
-    ASSERT_TRUE(Finite(st)) << "state " << st.seq;
+    ASSERT_TRUE(AllFinite(st)) << "state " << st.seq;
     const std::pair<double, double> order{st.rudder_order, st.propeller_rps_order};
     ASSERT_TRUE(accepted.count(order)) << "state " << st.seq << " carries rudder_order " << st.rudder_order
                                        << " rad, rps_order " << st.propeller_rps_order

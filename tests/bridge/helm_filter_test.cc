@@ -310,11 +310,7 @@ TEST(HelmFuzz, TenThousandCommandsThroughTheBridge) {
   const HelmFilterOptions& lim = bridge.helm_filter().options();
   ASSERT_EQ(listener.states().size(), 301u);
   for (const auto& st : listener.states()) {
-    for (double v : {st.t, st.x, st.y, st.latitude, st.longitude, st.heading, st.u, st.v, st.r, st.speed_over_ground,
-                     st.course_over_ground, st.drift_angle, st.rudder_angle, st.rudder_order, st.propeller_rps,
-                     st.propeller_rps_order}) {
-      ASSERT_TRUE(std::isfinite(v)) << "state " << st.seq;
-    }
+    ASSERT_TRUE(AllFinite(st)) << "state " << st.seq;
     ASSERT_LE(std::abs(st.rudder_angle), lim.rudder_max);
     ASSERT_LE(std::abs(st.rudder_order), lim.rudder_max);
     ASSERT_GE(st.propeller_rps_order, lim.rps_min);
