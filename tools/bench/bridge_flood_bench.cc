@@ -131,8 +131,9 @@ std::string PacingVerdict(const Run& f, const Run& q) {
   if (kelvin::bench::Accepted(f.pacing)) return "Under the flood the pacing meets the bridge_pacing limits.\n\n";
   if (q.pacing.samples && !kelvin::bench::Accepted(q.pacing)) {
     return fmt::format("Under the flood the pacing misses the bridge_pacing limits (p99 {:.3f} ms), and so does the "
-                       "same bridge without the flood (p99 {:.3f} ms): the jitter is the machine's CPU contention, "
-                       "not the flood's; re-run on a quiet machine for the acceptance.\n\n",
+                       "same bridge without the flood in the same run (p99 {:.3f} ms): the machine's CPU contention "
+                       "(load average below) misses them by itself, so this run cannot judge the flood's share; "
+                       "re-run on a quiet machine for the acceptance.\n\n",
                        f.pacing.p99_jitter_ms, q.pacing.p99_jitter_ms);
   }
   return fmt::format("Under the flood the pacing misses the bridge_pacing limits (p99 {:.3f} ms){}.\n\n",
