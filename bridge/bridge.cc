@@ -20,6 +20,8 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kHelmQueueCapacity = 10000;
+constexpr int kDrainAtLeast = 256;  // messages per drain whatever the time
 
 double WrapTwoPi(double a) {
   double w = std::fmod(a, kTwoPi);
@@ -134,6 +136,11 @@ Bridge::Bridge(const sim::ShipParameters& ship, const BridgeOptions& options, lc
   event_channel_ = options_.channel_prefix + "_EVENT";
   helm_subscription_ = lcm_subscribe(lcm_.getUnderlyingLCM(), helm_channel_.c_str(), &Bridge::OnHelm, this);
   if (!helm_subscription_) throw InputError(fmt::format("LCM: cannot subscribe to {}", helm_channel_));
+  // LCM keeps 30 messages per subscription and drops the rest unseen: under a
+  // flood, valid orders with them, and uncounted. Room for a second of
+  // 10,000 messages a second instead (a few MB at most).
+  lcm_subscription_set_queue_capacity(helm_subscription_, kHelmQueueCapacity);
+  drain_budget_ns_ = std::llround(0.25e9 / (options_.rate * options_.speedup));
   if (options_.nmea) nmea_ = std::make_unique<NmeaUdpSender>(*options_.nmea);
   first_overshoot_ = second_overshoot_ = first_overshoot_time_ = second_overshoot_time_ = kNaN;
   summary_.step = step_;
@@ -209,10 +216,16 @@ void Bridge::PublishEvent(std::int8_t kind, int index, double overshoot, double 
 
 void Bridge::DrainLcm() {
   // Never blocks: handleTimeout(0) returns 0 at once when nothing is queued.
-  // Bounded, so a flood of helm messages cannot starve the simulation.
-  for (int i = 0; i < 256; ++i) {
-    if (lcm_.handleTimeout(0) <= 0) break;
+  // The first 256 messages always; beyond them bounded in time, so a flood
+  // of helm messages cannot starve the simulation: what is left waits in
+  // LCM's queue for the next period.
+  const std::int64_t until = MonotonicNanoseconds() + drain_budget_ns_;
+  for (int n = 1; lcm_.handleTimeout(0) > 0; ++n) {
     ++summary_.lcm_messages_handled;
+    if (n >= kDrainAtLeast && MonotonicNanoseconds() >= until) {
+      ++summary_.helm_drains_cut;
+      break;
+    }
   }
   if (display_) display_->DrainHelm(helm_, RealtimeMicroseconds());
 }

@@ -5,7 +5,8 @@
 // and optionally sends NMEA 0183 over UDP.
 //
 // The loop per state message: compute the next state (drain LCM without
-// blocking, apply the latest accepted helm order, take the integrator steps),
+// blocking: 256 messages, more for up to a quarter of the period; apply the latest accepted
+// helm order; take the integrator steps),
 // sleep until its absolute wall-clock deadline, publish. Nothing in the loop
 // allocates or throws; all set-up happens in the constructor.
 #pragma once
@@ -65,6 +66,7 @@ struct BridgeSummary {
   long events_published = 0;
   long publish_failures = 0;
   long lcm_messages_handled = 0;
+  long helm_drains_cut = 0;  // LCM drains stopped at their time budget (256 messages, then a quarter of the period)
   HelmCounters helm;
   long helm_ignored_scripted = 0;  // accepted orders that arrived while a script was steering
   long late_ticks = 0;
@@ -140,6 +142,7 @@ class Bridge {
   bool ran_ = false;
   HelmFilter helm_;
   lcm_subscription_t* helm_subscription_ = nullptr;
+  std::int64_t drain_budget_ns_ = 0;  // per DrainLcm(): a quarter of the wall-clock state period
   LocalOrigin origin_;
   std::unique_ptr<NmeaUdpSender> nmea_;
   std::string state_channel_, helm_channel_, event_channel_;

@@ -47,19 +47,41 @@ std::string_view VerdictName(HelmVerdict verdict) {
   return "?";
 }
 
+void HelmCounters::Count(HelmVerdict verdict) {
+  ++received;
+  switch (verdict) {
+    case HelmVerdict::kAccepted: ++accepted; break;
+    case HelmVerdict::kClamped:
+      ++accepted;
+      ++clamped;
+      break;
+    case HelmVerdict::kMalformed: ++malformed; break;
+    case HelmVerdict::kNotFinite: ++not_finite; break;
+    case HelmVerdict::kOutOfRange: ++out_of_range; break;
+    case HelmVerdict::kStale: ++stale; break;
+    case HelmVerdict::kFuture: ++future; break;
+    case HelmVerdict::kUnknownSource: ++unknown_source; break;
+  }
+}
+
+long HelmCounters::Of(HelmVerdict verdict) const {
+  switch (verdict) {
+    case HelmVerdict::kAccepted: return accepted - clamped;
+    case HelmVerdict::kClamped: return clamped;
+    case HelmVerdict::kMalformed: return malformed;
+    case HelmVerdict::kNotFinite: return not_finite;
+    case HelmVerdict::kOutOfRange: return out_of_range;
+    case HelmVerdict::kStale: return stale;
+    case HelmVerdict::kFuture: return future;
+    case HelmVerdict::kUnknownSource: return unknown_source;
+  }
+  return 0;
+}
+
 HelmFilter::HelmFilter(const HelmFilterOptions& options) : options_(options) { options_.Validate(); }
 
 HelmVerdict HelmFilter::Reject(HelmVerdict verdict, const kelvin::helm_command_t& c, const char* what) {
-  switch (verdict) {
-    case HelmVerdict::kMalformed: ++counters_.malformed; break;
-    case HelmVerdict::kNotFinite: ++counters_.not_finite; break;
-    case HelmVerdict::kOutOfRange: ++counters_.out_of_range; break;
-    case HelmVerdict::kStale: ++counters_.stale; break;
-    case HelmVerdict::kFuture: ++counters_.future; break;
-    case HelmVerdict::kUnknownSource: ++counters_.unknown_source; break;
-    case HelmVerdict::kAccepted:
-    case HelmVerdict::kClamped: break;
-  }
+  counters_.Count(verdict);
   const int n = std::snprintf(last_problem_, sizeof(last_problem_),
                               "helm command from source %d rejected (%.*s): %s (rudder_order %g rad, rps_order %g "
                               "1/s, utime %lld us)",
@@ -74,7 +96,6 @@ HelmVerdict HelmFilter::Receive(const void* data, std::size_t size, std::int64_t
   const int max_len = static_cast<int>(std::min<std::size_t>(size, 1 << 20));
   const int used = data ? decoded_.decode(data, 0, max_len) : -1;
   if (used < 0 || static_cast<std::size_t>(used) != size) {
-    ++counters_.received;
     kelvin::helm_command_t none{};
     char what[96];
     std::snprintf(what, sizeof(what), "%zu bytes do not decode as kelvin.helm_command_t (%d bytes expected)", size,
@@ -85,7 +106,6 @@ HelmVerdict HelmFilter::Receive(const void* data, std::size_t size, std::int64_t
 }
 
 HelmVerdict HelmFilter::Check(const kelvin::helm_command_t& c, std::int64_t now_utime) {
-  ++counters_.received;
   if (!std::isfinite(c.rudder_order)) return Reject(HelmVerdict::kNotFinite, c, "rudder_order is not finite");
   if (!std::isfinite(c.rps_order)) return Reject(HelmVerdict::kNotFinite, c, "rps_order is not finite");
   if (std::abs(c.rudder_order) > options_.rudder_reject) {
@@ -104,12 +124,11 @@ HelmVerdict HelmFilter::Check(const kelvin::helm_command_t& c, std::int64_t now_
   }
   const double rudder = sim::ClampRudderAngle(c.rudder_order, options_.rudder_max);
   const double rps = std::clamp(c.rps_order, options_.rps_min, options_.rps_max);
-  ++counters_.accepted;
   rudder_order_ = rudder;
   rps_order_ = rps;
   has_order_ = true;
   if (rudder != c.rudder_order || rps != c.rps_order) {
-    ++counters_.clamped;
+    counters_.Count(HelmVerdict::kClamped);
     const int n = std::snprintf(last_problem_, sizeof(last_problem_),
                                 "helm command from source %d clamped to the ship's limits: rudder_order %g -> %g deg, "
                                 "rps_order %g -> %g 1/s",
@@ -117,6 +136,7 @@ HelmVerdict HelmFilter::Check(const kelvin::helm_command_t& c, std::int64_t now_
     last_problem_length_ = n < 0 ? 0 : std::min(static_cast<std::size_t>(n), sizeof(last_problem_) - 1);
     return HelmVerdict::kClamped;
   }
+  counters_.Count(HelmVerdict::kAccepted);
   return HelmVerdict::kAccepted;
 }
 

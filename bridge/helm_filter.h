@@ -52,6 +52,10 @@ struct HelmCounters {
   long future = 0;
   long unknown_source = 0;
   long rejected() const { return malformed + not_finite + out_of_range + stale + future + unknown_source; }
+  // Counts one command with this verdict (received, and its class).
+  void Count(HelmVerdict verdict);
+  // The commands counted with this verdict (kAccepted: accepted unclamped).
+  long Of(HelmVerdict verdict) const;
   bool operator==(const HelmCounters&) const = default;
 };
 

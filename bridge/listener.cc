@@ -2,9 +2,20 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "data/schema/errors.h"
 
 namespace kelvin::bridge {
+
+bool AllFinite(const kelvin::ship_state_t& s) {
+  for (double v : {s.t, s.x, s.y, s.latitude, s.longitude, s.heading, s.u, s.v, s.r, s.speed_over_ground,
+                   s.course_over_ground, s.drift_angle, s.rudder_angle, s.rudder_order, s.propeller_rps,
+                   s.propeller_rps_order}) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
 
 Listener::Listener(lcm::LCM& lcm, const std::string& channel_prefix) : lcm_(lcm) {
   if (!lcm_.good()) throw InputError("LCM is not initialized (bad LCM URL?)");

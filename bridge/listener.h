@@ -14,6 +14,9 @@
 
 namespace kelvin::bridge {
 
+// True if every number of the state is finite.
+bool AllFinite(const kelvin::ship_state_t& s);
+
 class Listener {
  public:
   // Subscribes to <prefix>_STATE and <prefix>_EVENT on `lcm`.

@@ -17,7 +17,6 @@
 #include <fstream>
 #include <sstream>
 #include <lcm/lcm-cpp.hpp>
-#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -25,14 +24,13 @@
 #include "bridge/listener.h"
 #include "simulator/maneuvers/runner.h"
 #include "simulator/mmg/ship_parameters.h"
+#include "tests/bridge/udpm_loopback.h"
 #include "tests/test_utilities/test_utilities.h"
 
 extern char** environ;
 
 namespace kelvin::bridge {
 namespace {
-
-constexpr const char* kGroup = "239.255.76.67";
 
 // A child process started with posix_spawn; killed (SIGKILL) if still running
 // when destroyed, so no test leaves a process behind.
@@ -89,16 +87,6 @@ class Child {
   int code_ = -1;
 };
 
-// Empty when loopback multicast works; otherwise why not.
-std::string MulticastProblem() {
-  const std::string check = std::string("ip route get ") + kGroup + " >/dev/null 2>&1";
-  if (testing::RunCommand(check).exit_code == 0) return "";
-  // Root may add the route for the test (CI containers often have none).
-  testing::RunCommand("ip route add 224.0.0.0/4 dev lo");
-  if (testing::RunCommand(check).exit_code == 0) return "";
-  return "no multicast route on this machine; add one with 'ip route add 224.0.0.0/4 dev lo' (as root)";
-}
-
 std::string ReadFile(const std::string& path) {
   std::ifstream f(path);
   std::stringstream ss;
@@ -106,15 +94,9 @@ std::string ReadFile(const std::string& path) {
   return ss.str();
 }
 
-std::string UniqueUrl() {
-  std::random_device rd;
-  const int port = 20000 + static_cast<int>(rd() % 20000);
-  return "udpm://" + std::string(kGroup) + ":" + std::to_string(port) + "?ttl=0";
-}
-
 TEST(BridgeUdpm, SecondProcessAndLcmLoggerReceiveEveryMessageInOrder) {
-  if (const std::string why = MulticastProblem(); !why.empty()) GTEST_SKIP() << why;
-  const std::string url = UniqueUrl();
+  if (const std::string why = testing::MulticastProblem(); !why.empty()) GTEST_SKIP() << why;
+  const std::string url = testing::UniqueUdpmUrl();
   lcm::LCM lcm(url);
   if (!lcm.good()) GTEST_SKIP() << "LCM cannot open " << url << " (multicast unavailable on loopback)";
   const bool have_logger = testing::HaveProgram("lcm-logger");

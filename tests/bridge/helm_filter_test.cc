@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bridge/bridge.h"
+#include "bridge/helm_abuse.h"
 #include "bridge/helm_filter.h"
 #include "bridge/listener.h"
 #include "bridge/pacer.h"
@@ -204,119 +205,77 @@ TEST(HelmFilter, BadOptionsHaveOneClearMessage) {
   EXPECT_EQ(message(o), "helm option future_tolerance = -1: expected a non-negative time in s");
 }
 
+// --- The abusive messages of the fuzz and flood tests ---------------------
+
+TEST(HelmAbuse, EveryKindGetsItsOwnVerdictFromTheFilter) {
+  HelmFilterOptions reverse = Limits();  // reverse thrust, any source
+  reverse.rps_min = -reverse.rps_max;
+  reverse.sources.clear();
+  for (const HelmFilterOptions& limits : {Limits(), reverse}) {
+    HelmAbuseMaker maker(limits, 7);
+    const std::vector<HelmAbuse> kinds = HelmAbuseKinds(limits);
+    EXPECT_EQ(kinds.size(), limits.sources.empty() ? 13u : 14u);
+    for (HelmAbuse kind : kinds) {
+      for (int i = 0; i < 1000; ++i) {
+        HelmFilter filter(limits);
+        const auto bytes = maker.Make(kind, kNow);
+        const HelmVerdict verdict = filter.Receive(bytes.data(), bytes.size(), kNow);
+        ASSERT_EQ(verdict, ExpectedVerdict(kind)) << HelmAbuseName(kind) << " #" << i;
+        double rudder = 0, rps = 0;
+        const bool steers = filter.TakeOrder(&rudder, &rps);
+        ASSERT_EQ(steers, verdict == HelmVerdict::kAccepted || verdict == HelmVerdict::kClamped);
+        if (steers) {
+          ASSERT_EQ(rudder, maker.order_rudder());
+          ASSERT_EQ(rps, maker.order_rps());
+        }
+      }
+    }
+  }
+}
+
 // --- Fuzz through the running bridge -------------------------------------
 
-enum class Kind { kValid, kClamped, kNotFinite, kOutOfRange, kStale, kFuture, kUnknownSource, kMalformed };
-
+// Random kinds of bridge/helm_abuse.h, `per_state` of them after each state.
 class Fuzzer {
  public:
   Fuzzer(lcm::LCM& lcm, const Bridge& bridge, int total, int per_state)
-      : lcm_(lcm), bridge_(bridge), total_(total), per_state_(per_state), rng_(20261122) {
+      : lcm_(lcm),
+        bridge_(bridge),
+        total_(total),
+        per_state_(per_state),
+        kinds_(HelmAbuseKinds(bridge.helm_filter().options())),
+        maker_(bridge.helm_filter().options(), 20261122),
+        rng_(20261122) {
     lcm_.subscribe(bridge.state_channel(), &Fuzzer::OnState, this);
   }
   HelmCounters expected;
   double last_rudder = kNaN, last_rps = kNaN;  // the last accepted order after clamping
   int sent = 0;
-  int last_batch_seq = -1;
 
  private:
-  double U(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
-  int I(int a, int b) { return std::uniform_int_distribution<int>(a, b)(rng_); }
-
-  void OnState(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-    kelvin::ship_state_t s;
-    s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size));
+  void OnState(const lcm::ReceiveBuffer* /*rbuf*/, const std::string&) {
     for (int i = 0; i < per_state_ && sent < total_; ++i) SendOne();
-    if (sent == total_ && last_batch_seq < 0) last_batch_seq = static_cast<int>(s.seq);
   }
 
   void SendOne() {
-    const HelmFilterOptions& lim = bridge_.helm_filter().options();
-    const std::int64_t now = RealtimeMicroseconds();
-    const Kind kind = static_cast<Kind>(I(0, 7));
-    kelvin::helm_command_t c =
-        Command(U(-lim.rudder_max, lim.rudder_max), U(lim.rps_min, lim.rps_max), now, I(0, 1) ? 1 : 2);
+    const auto pick = std::uniform_int_distribution<std::size_t>(0, kinds_.size() - 1)(rng_);
+    const auto bytes = maker_.Make(kinds_[pick], RealtimeMicroseconds());
+    const HelmVerdict verdict = ExpectedVerdict(kinds_[pick]);
     ++sent;
-    ++expected.received;
-    switch (kind) {
-      case Kind::kValid:
-        break;
-      case Kind::kClamped:
-        switch (I(0, 2)) {
-          case 0: c.rudder_order = (I(0, 1) ? 1 : -1) * U(lim.rudder_max * 1.0001, lim.rudder_reject); break;
-          case 1: c.rps_order = U(lim.rps_max * 1.0001, lim.rps_reject); break;
-          default: c.rps_order = -U(1e-3, lim.rps_reject); break;  // no reverse thrust: clamped to 0
-        }
-        ++expected.clamped;
-        break;
-      case Kind::kNotFinite: {
-        const double bad[] = {kNaN, kInf, -kInf, -kNaN};
-        (I(0, 1) ? c.rudder_order : c.rps_order) = bad[I(0, 3)];
-        ++expected.not_finite;
-        break;
-      }
-      case Kind::kOutOfRange: {
-        const double big = std::pow(10.0, U(0.3, 300));
-        if (I(0, 1)) {
-          c.rudder_order = (I(0, 1) ? 1 : -1) * std::max(big, lim.rudder_reject * 1.0001);
-        } else {
-          c.rps_order = (I(0, 1) ? 1 : -1) * std::max(big, lim.rps_reject * 1.0001);
-        }
-        ++expected.out_of_range;
-        break;
-      }
-      case Kind::kStale:
-        c.utime = I(0, 9) == 0 ? std::numeric_limits<std::int64_t>::min()
-                               : now - static_cast<std::int64_t>(U(60e6, 1e15));
-        ++expected.stale;
-        break;
-      case Kind::kFuture:
-        c.utime = I(0, 9) == 0 ? std::numeric_limits<std::int64_t>::max()
-                               : now + static_cast<std::int64_t>(U(60e6, 1e15));
-        ++expected.future;
-        break;
-      case Kind::kUnknownSource:
-        c.source_id = I(0, 1) ? I(3, 1 << 30) : -I(0, 1 << 30);
-        ++expected.unknown_source;
-        break;
-      case Kind::kMalformed: {
-        std::vector<std::uint8_t> bytes;
-        switch (I(0, 3)) {
-          case 0:  // random bytes
-            bytes.resize(static_cast<std::size_t>(I(0, 80)));
-            for (auto& b : bytes) b = static_cast<std::uint8_t>(I(0, 255));
-            break;
-          case 1:  // truncated
-            bytes = Encode(c);
-            bytes.resize(static_cast<std::size_t>(I(0, static_cast<int>(bytes.size()) - 1)));
-            break;
-          case 2:  // trailing garbage
-            bytes = Encode(c);
-            bytes.resize(bytes.size() + static_cast<std::size_t>(I(1, 16)), 0xAB);
-            break;
-          default: {  // a valid encoding with a flipped hash byte
-            bytes = Encode(c);
-            bytes[static_cast<std::size_t>(I(0, 7))] ^= static_cast<std::uint8_t>(I(1, 255));
-            break;
-          }
-        }
-        ++expected.malformed;
-        lcm_.publish(bridge_.helm_channel(), bytes.data(), static_cast<unsigned>(bytes.size()));
-        return;
-      }
+    expected.Count(verdict);
+    if (verdict == HelmVerdict::kAccepted || verdict == HelmVerdict::kClamped) {
+      last_rudder = maker_.order_rudder();
+      last_rps = maker_.order_rps();
     }
-    if (kind == Kind::kValid || kind == Kind::kClamped) {
-      ++expected.accepted;
-      last_rudder = std::clamp(c.rudder_order, -lim.rudder_max, lim.rudder_max);
-      last_rps = std::clamp(c.rps_order, lim.rps_min, lim.rps_max);
-    }
-    lcm_.publish(bridge_.helm_channel(), &c);
+    lcm_.publish(bridge_.helm_channel(), bytes.data(), static_cast<unsigned>(bytes.size()));
   }
 
   lcm::LCM& lcm_;
   const Bridge& bridge_;
   int total_;
   int per_state_;
+  std::vector<HelmAbuse> kinds_;
+  HelmAbuseMaker maker_;
   std::mt19937_64 rng_;
 };
 
@@ -343,19 +302,15 @@ TEST(HelmFuzz, TenThousandCommandsThroughTheBridge) {
   EXPECT_EQ(s.helm, fuzz.expected);
   EXPECT_EQ(s.helm.received, 10000);
   EXPECT_EQ(s.helm.received, s.helm.accepted + s.helm.rejected());
-  // Every class was exercised.
+  // Every class was exercised (each of the 14 kinds ~714 times).
   for (long n : {s.helm.clamped, s.helm.malformed, s.helm.not_finite, s.helm.out_of_range, s.helm.stale,
                  s.helm.future, s.helm.unknown_source}) {
-    EXPECT_GT(n, 1000);
+    EXPECT_GT(n, 500);
   }
   const HelmFilterOptions& lim = bridge.helm_filter().options();
   ASSERT_EQ(listener.states().size(), 301u);
   for (const auto& st : listener.states()) {
-    for (double v : {st.t, st.x, st.y, st.latitude, st.longitude, st.heading, st.u, st.v, st.r, st.speed_over_ground,
-                     st.course_over_ground, st.drift_angle, st.rudder_angle, st.rudder_order, st.propeller_rps,
-                     st.propeller_rps_order}) {
-      ASSERT_TRUE(std::isfinite(v)) << "state " << st.seq;
-    }
+    ASSERT_TRUE(AllFinite(st)) << "state " << st.seq;
     ASSERT_LE(std::abs(st.rudder_angle), lim.rudder_max);
     ASSERT_LE(std::abs(st.rudder_order), lim.rudder_max);
     ASSERT_GE(st.propeller_rps_order, lim.rps_min);

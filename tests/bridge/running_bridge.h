@@ -1,5 +1,6 @@
-// A bridge on memq:// running on its own thread with its browser display on
-// a free loopback port, for the display tests.
+// A bridge on memq:// (or another LCM URL) running on its own thread with
+// its browser display on a free loopback port, for the display and flood
+// tests. Its listener shares the bridge's LCM instance.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -23,7 +24,9 @@ namespace kelvin::testing {
 // The LCM states are read once the bridge has stopped.
 class RunningBridge {
  public:
-  RunningBridge(bridge::BridgeOptions o, bridge::HttpDisplayOptions h = {}) : lcm_("memq://") {
+  explicit RunningBridge(bridge::BridgeOptions o, bridge::HttpDisplayOptions h = {},
+                         const std::string& lcm_url = "memq://")
+      : lcm_(lcm_url) {
     ship_ = sim::LoadShip(SourceDir() / "data/ships/kvlcc2.yaml");
     bridge_ = std::make_unique<bridge::Bridge>(ship_, o, lcm_);
     listener_ = std::make_unique<bridge::Listener>(lcm_, "KELVIN");
@@ -58,6 +61,7 @@ class RunningBridge {
   const bridge::DisplayFeed& feed() const { return feed_; }
   std::string Url(const std::string& query = "") const { return display_->url() + query; }
   const bridge::BridgeSummary& summary() const { return summary_; }
+  const bridge::Bridge& bridge() const { return *bridge_; }
 
  private:
   lcm::LCM lcm_;

@@ -35,51 +35,16 @@
 #include "bridge/pacer.h"
 #include "simulator/mmg/ship_parameters.h"
 #include "tools/bench/markdown_section.h"
+#include "tools/bench/pacing_stats.h"
 // Last: httplib.h brings <resolv.h>, whose _res macro breaks Eigen's headers.
 #include <httplib.h>
 
 namespace {
 
 using kelvin::bridge::MonotonicNanoseconds;
-
-struct Stats {
-  long samples = 0;
-  double mean_period_error_ms = 0;  // mean(t_k - t_{k-1}) - T
-  double p99_jitter_ms = 0;         // 99th percentile of |t_k - t_{k-1} - T|
-  double max_jitter_ms = 0;
-  double drift_ms = 0;              // (t_N - t_0) - N T: lag accumulated over the run
-  double slope_us_per_s = 0;        // least-squares slope of the schedule error
-};
-
-Stats Analyse(const std::vector<std::int64_t>& t, double period) {
-  Stats s;
-  const std::size_t n = t.size();
-  s.samples = static_cast<long>(n);
-  if (n < 3) return s;
-  const double T = period * 1e9;
-  std::vector<double> jit;
-  jit.reserve(n - 1);
-  for (std::size_t k = 1; k < n; ++k) jit.push_back(std::abs(static_cast<double>(t[k] - t[k - 1]) - T));
-  std::sort(jit.begin(), jit.end());
-  const double total = static_cast<double>(t[n - 1] - t[0]);
-  s.mean_period_error_ms = (total / static_cast<double>(n - 1) - T) * 1e-6;
-  s.p99_jitter_ms = jit[static_cast<std::size_t>(0.99 * static_cast<double>(jit.size() - 1))] * 1e-6;
-  s.max_jitter_ms = jit[jit.size() - 1] * 1e-6;
-  s.drift_ms = (total - static_cast<double>(n - 1) * T) * 1e-6;
-  // Slope of e_k = t_k - t_0 - k T against time.
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double x = static_cast<double>(k) * period;
-    const double e = static_cast<double>(t[k] - t[0]) - static_cast<double>(k) * T;
-    sx += x;
-    sy += e;
-    sxx += x * x;
-    sxy += x * e;
-  }
-  const double m = static_cast<double>(n);
-  s.slope_us_per_s = (m * sxy - sx * sy) / (m * sxx - sx * sx) * 1e-3;
-  return s;
-}
+using kelvin::bench::Accepted;
+using kelvin::bench::Analyse;
+using kelvin::bench::Stats;
 
 // Pages watching the display's event stream on their own threads, each
 // counting the updates it receives.
@@ -171,10 +136,6 @@ std::vector<std::int64_t> RunNaive(const kelvin::sim::ShipParameters& ship, doub
     log[static_cast<std::size_t>(k)] = MonotonicNanoseconds();
   }
   return log;
-}
-
-bool Accepted(const Stats& b) {
-  return std::abs(b.mean_period_error_ms) < 0.1 && b.p99_jitter_ms < 2.0 && std::abs(b.drift_ms) < 2.0;
 }
 
 std::string Section(const Stats& b, const Stats& f, bool fifo, const Stats& n, const Stats& d, long updates,

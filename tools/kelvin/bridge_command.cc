@@ -1,12 +1,16 @@
 // kelvin bridge: the simulator in real time over LCM, helm commands in,
 // ship state, maneuver events and NMEA 0183 out.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <fstream>
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,6 +18,7 @@
 #include "bridge/derivative_set.h"
 #include "bridge/display_feed.h"
 #include "bridge/http_display.h"
+#include "bridge/lcm_url.h"
 #include "data/schema/errors.h"
 #include "simulator/mmg/ship_parameters.h"
 #include "tools/kelvin/commands.h"
@@ -90,6 +95,24 @@ std::unique_ptr<bridge::HttpDisplay> StartDisplay(const BridgeArgs& a, const sim
   return display;
 }
 
+// Where the multicast group is joined on a network interface, other
+// machines there reach the helm channel (TTL 0 only keeps what is sent here).
+void WarnIfOtherMachinesCanSend(const std::string& lcm_url, const std::string& helm_channel) {
+  const std::optional<std::string> group = bridge::UdpmGroup(lcm_url);
+  if (!group) return;
+  std::ifstream igmp("/proc/net/igmp");
+  std::stringstream text;
+  text << igmp.rdbuf();
+  std::vector<std::string> outside;
+  for (const std::string& device : bridge::MulticastMembers(text.str(), *group)) {
+    if (device != "lo") outside.push_back(device);
+  }
+  if (outside.empty()) return;
+  spdlog::warn("LCM {}: the multicast group {} is joined on {}: other machines on that network can send to {} (the "
+               "helm filter and --helm-source still apply); 'ip route add 224.0.0.0/4 dev lo' keeps it on this machine",
+               lcm_url, *group, fmt::join(outside, ", "), helm_channel);
+}
+
 void PrintPageCounters(const bridge::PageCounters& p) {
   fmt::print("  display: {} page helm orders queued; dropped: {} without the helm, {} malformed, {} oversized, {} bad "
              "requests, {} while the inbox was full; {} streams refused\n",
@@ -121,19 +144,26 @@ void RunBridge(BridgeArgs& a) {
   o.helm.sources.assign(a.helm_sources.begin(), a.helm_sources.end());
   o.Validate();
 
-  lcm::LCM lcm(a.lcm_url);
+  const std::string lcm_url = bridge::ResolveLcmUrl(a.lcm_url);
+  lcm::LCM lcm(lcm_url);
   if (!lcm.good()) {
     throw ArgumentError(fmt::format("--lcm-url '{}': LCM cannot open this URL (expected e.g. udpm://239.255.76.67:7667?ttl=0 "
                                     "or memq://)",
-                                    a.lcm_url));
+                                    lcm_url));
+  }
+  if (const auto ttl = bridge::UdpmTtl(lcm_url); ttl && *ttl > 0) {
+    spdlog::warn("LCM {}: multicast TTL {} sends the states beyond this machine (ttl=0 keeps them on it)", lcm_url,
+                 *ttl);
   }
   bridge::Bridge bridge(ship, o, lcm);
+  WarnIfOtherMachinesCanSend(lcm_url, bridge.helm_channel());
   bridge::DisplayFeed feed;
   const std::unique_ptr<bridge::HttpDisplay> display = StartDisplay(a, ship, assessment, feed);
   if (display) bridge.SetDisplay(&feed);
-  spdlog::info("bridge: {} at {} Hz (step {} s x {}), speedup {}, {}; channels {}, {}, {}{}", ship.name, o.rate,
-               bridge.step(), bridge.steps_per_state(), o.speedup,
-               o.script.empty() ? std::string("helm commands steer") : "script " + o.script, bridge.state_channel(),
+  spdlog::info("bridge: {} at {} Hz (step {} s x {}), speedup {}, {}; LCM {}, channels {}, {}, {}{}", ship.name,
+               o.rate, bridge.step(), bridge.steps_per_state(), o.speedup,
+               o.script.empty() ? std::string("helm commands steer") : "script " + o.script, lcm_url,
+               bridge.state_channel(),
                bridge.helm_channel(), bridge.event_channel(),
                o.nmea ? fmt::format(", NMEA 0183 to {} at {} Hz ({} fixes)", o.nmea->ToString(), o.nmea_rate,
                                     bridge::NmeaFixModeName(o.nmea_fix))
@@ -154,6 +184,8 @@ void RunBridge(BridgeArgs& a) {
   const auto& h = s.helm;
   fmt::print("bridge {}: t = {:.3f} s, {} states, {} events published ({} failed)\n", StatusName(s.status), s.sim_time,
              s.states_published, s.events_published, s.publish_failures);
+  fmt::print("  lcm: {} messages handled; the drain stopped at its time budget in {} state periods\n",
+             s.lcm_messages_handled, s.helm_drains_cut);
   fmt::print("  helm: {} received, {} accepted ({} clamped), {} rejected: {} malformed, {} not finite, {} out of range, "
              "{} stale, {} from the future, {} unknown source; {} ignored while scripted\n",
              h.received, h.accepted, h.clamped, h.rejected(), h.malformed, h.not_finite, h.out_of_range, h.stale,
@@ -186,7 +218,7 @@ Command AddBridgeCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--step", o.step, "Integrator step in s dividing 1/rate (default: at most Lpp/U0/200)");
   cmd->add_option("--speed", o.approach_speed, "Initial speed in m/s (default: the ship file's approach speed)");
-  cmd->add_option("--lcm-url", args->lcm_url, "LCM URL (default: LCM's, e.g. udpm://239.255.76.67:7667?ttl=0)");
+  cmd->add_option("--lcm-url", args->lcm_url, "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0: loopback only)");
   cmd->add_option("--channel-prefix", o.channel_prefix, "Channels <prefix>_STATE, <prefix>_HELM, <prefix>_EVENT")
       ->capture_default_str();
   cmd->add_option("--nmea", args->nmea, "Send NMEA 0183 over UDP to host:port (without a value: 127.0.0.1:10110)")

@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "bridge/lcm_url.h"
 #include "bridge/listener.h"
 #include "data/schema/atomic_file.h"
 #include "data/schema/errors.h"
@@ -48,8 +49,9 @@ void RunListen(const ListenArgs& a) {
     throw ArgumentError(fmt::format("--idle-timeout {}: expected a positive time in s", a.idle_timeout));
   }
   if (!(a.timeout >= 0)) throw ArgumentError(fmt::format("--timeout {}: expected a time >= 0 s", a.timeout));
-  lcm::LCM lcm(a.lcm_url);
-  if (!lcm.good()) throw ArgumentError(fmt::format("--lcm-url '{}': LCM cannot open this URL", a.lcm_url));
+  const std::string lcm_url = bridge::ResolveLcmUrl(a.lcm_url);
+  lcm::LCM lcm(lcm_url);
+  if (!lcm.good()) throw ArgumentError(fmt::format("--lcm-url '{}': LCM cannot open this URL", lcm_url));
   bridge::Listener listener(lcm, a.channel_prefix);
   fmt::print("listen: subscribed to {}_STATE and {}_EVENT\n", a.channel_prefix, a.channel_prefix);
   std::fflush(stdout);
@@ -112,7 +114,7 @@ void RunListen(const ListenArgs& a) {
 Command AddListenCommand(CLI::App& app) {
   auto args = std::make_shared<ListenArgs>();
   CLI::App* cmd = app.add_subcommand("listen", "Record the state and events that kelvin bridge publishes over LCM");
-  cmd->add_option("--lcm-url", args->lcm_url, "LCM URL (default: LCM's)");
+  cmd->add_option("--lcm-url", args->lcm_url, "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
   cmd->add_option("--channel-prefix", args->channel_prefix, "Channels <prefix>_STATE and <prefix>_EVENT")
       ->capture_default_str();
   cmd->add_option("--count", args->count, "Stop after this many states (0: no limit)")->capture_default_str();
