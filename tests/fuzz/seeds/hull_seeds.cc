@@ -3,9 +3,6 @@
 #include <fmt/format.h>
 #include <zlib.h>
 
-#include <fstream>
-#include <sstream>
-
 #include "cfd/geometry/triangle_surface.h"
 #include "tests/fuzz/seeds/seeds.h"
 
@@ -54,10 +51,9 @@ std::string Gzip(const std::string& bytes, const fs::path& scratch) {
   gzFile gz = gzopen(scratch.c_str(), "wb9");
   gzwrite(gz, bytes.data(), static_cast<unsigned>(bytes.size()));
   gzclose(gz);
-  std::ostringstream s;
-  s << std::ifstream(scratch, std::ios::binary).rdbuf();
+  const std::string out = ReadBytes(scratch);
   fs::remove(scratch);
-  return s.str();
+  return out;
 }
 
 }  // namespace
@@ -66,10 +62,9 @@ void WriteHullSeeds(const fs::path& out) {
   const cfd::TriangleSurface box = Box();
   const fs::path dir = out / "stl";
   cfd::WriteStl(box, dir / "box_binary.stl");
-  std::ostringstream binary;
-  binary << std::ifstream(dir / "box_binary.stl", std::ios::binary).rdbuf();
+  const std::string binary = ReadBytes(dir / "box_binary.stl");
   WriteSeed(dir, "box_ascii.stl", AsciiStl(box));
-  WriteSeed(dir, "box_binary.stl.gz", Gzip(binary.str(), dir / "scratch.gz"));
+  WriteSeed(dir, "box_binary.stl.gz", Gzip(binary, dir / "scratch.gz"));
   WriteSeed(dir, "box_ascii.stl.gz", Gzip(AsciiStl(box), dir / "scratch.gz"));
   WriteSeed(out / "obj", "box.obj", Obj(box));
   WriteSeed(out / "obj", "box.obj.gz", Gzip(Obj(box), out / "obj" / "scratch.gz"));

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 #include <fstream>
+#include <sstream>
 
 #include "tests/fuzz/seeds/seeds.h"
 
@@ -11,6 +12,12 @@ namespace kelvin::fuzz {
 void WriteSeed(const std::filesystem::path& dir, const std::string& name, const std::string& bytes) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / name, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+std::string ReadBytes(const std::filesystem::path& path) {
+  std::ostringstream s;
+  s << std::ifstream(path, std::ios::binary).rdbuf();
+  return s.str();
 }
 
 }  // namespace kelvin::fuzz

@@ -10,6 +10,8 @@ namespace kelvin::fuzz {
 
 // Writes `bytes` to dir / name, creating dir.
 void WriteSeed(const std::filesystem::path& dir, const std::string& name, const std::string& bytes);
+// The bytes of a file.
+std::string ReadBytes(const std::filesystem::path& path);
 
 void WriteYamlSeeds(const std::filesystem::path& source_dir, const std::filesystem::path& out);
 void WriteHullSeeds(const std::filesystem::path& out);

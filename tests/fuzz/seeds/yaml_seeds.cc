@@ -2,9 +2,6 @@
 // by their name, and a derivative set made from the KVLCC2 ship file.
 #include <fmt/format.h>
 
-#include <fstream>
-#include <sstream>
-
 #include "simulator/mmg/ship_parameters.h"
 #include "tests/fuzz/seeds/seeds.h"
 
@@ -12,12 +9,6 @@ namespace kelvin::fuzz {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string Slurp(const fs::path& p) {
-  std::ostringstream s;
-  s << std::ifstream(p, std::ios::binary).rdbuf();
-  return s.str();
-}
 
 // The fuzz target a data/ YAML file seeds.
 std::string TargetOf(const fs::path& file) {
@@ -44,7 +35,7 @@ void WriteYamlSeeds(const fs::path& source_dir, const fs::path& out) {
     const std::string name = fs::relative(e.path(), source_dir / "data").string();
     std::string flat = name;
     for (char& c : flat) c = c == '/' ? '_' : c;
-    WriteSeed(out / TargetOf(e.path()), flat, Slurp(e.path()));
+    WriteSeed(out / TargetOf(e.path()), flat, ReadBytes(e.path()));
   }
   const sim::ShipParameters kvlcc2 = sim::LoadShip(source_dir / "data/ships/kvlcc2.yaml");
   WriteSeed(out / "derivative_set_yaml", "kvlcc2.yaml", DerivativeSet(kvlcc2));
