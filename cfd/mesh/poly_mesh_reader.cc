@@ -416,6 +416,20 @@ std::vector<Patch> ReadBoundary(FoamFile file) {
 
 std::vector<int> ToInt(const std::vector<long long>& v) { return std::vector<int>(v.begin(), v.end()); }
 
+// Every cell has at least four faces and a face at most two cells, so a cell
+// label at or beyond the number of faces is an error (and would size the mesh's
+// per-cell arrays from a stray number).
+void CheckCellLabels(const std::vector<int>& cells, std::size_t n_faces, const fs::path& file,
+                     const std::string& what) {
+  for (std::size_t f = 0; f < cells.size(); ++f) {
+    if (cells[f] >= 0 && static_cast<std::size_t>(cells[f]) >= n_faces) {
+      throw DataFileError(fmt::format("{}: {} of face {} is cell {}; expected a cell index below the {} faces "
+                                      "(a polyMesh has fewer cells than faces)",
+                                      file.string(), what, f, cells[f], n_faces));
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Vector3> ParsePolyMeshPoints(const std::string& text, const fs::path& file) {
@@ -465,6 +479,8 @@ Mesh ParsePolyMesh(const PolyMeshText& text, const fs::path& dir) {
     throw DataFileError(fmt::format("{}: {} neighbours but only {} faces; expected at most one per face",
                                     (dir / "neighbour").string(), neighbour.size(), faces.size()));
   }
+  CheckCellLabels(owner, faces.size(), dir / "owner", "owner");
+  CheckCellLabels(neighbour, faces.size(), dir / "neighbour", "neighbour");
   for (std::size_t f = 0; f < faces.size(); ++f) {
     for (int p : faces[f]) {
       if (p < 0 || p >= static_cast<int>(points.size())) {

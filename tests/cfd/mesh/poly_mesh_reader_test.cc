@@ -207,6 +207,20 @@ TEST_F(BadPolyMesh, NegativeVolume) {
   ExpectError("polyMesh", "cell 0 has volume -1");
 }
 
+// Found by polymesh_fuzzer: a stray owner label sized the mesh's cell arrays
+// (6.7 GB for cell 1.6e9).
+TEST_F(BadPolyMesh, CellLabelBeyondTheFaces) {
+  const Mesh mesh = SampleMesh();
+  std::vector<int> owner(mesh.owner().begin(), mesh.owner().end());
+  owner.back() = 1600000000;
+  std::ostringstream os;
+  os << Header("labelList", "owner", false) << owner.size() << "\n(\n";
+  for (int o : owner) os << o << "\n";
+  os << ")\n";
+  WriteText(dir_ / "owner", os.str());
+  ExpectError("owner", "is cell 1600000000; expected a cell index below the");
+}
+
 TEST_F(BadPolyMesh, UnknownPatchType) {
   std::string text = ReadText(dir_ / "boundary");
   const std::size_t at = text.find("type wall");
