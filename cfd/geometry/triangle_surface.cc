@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -26,30 +27,47 @@ namespace {
   throw DataFileError(fmt::format("{}: {}", file.string(), what));
 }
 
-// The whole file, decompressed when it is gzip data.
-std::string Slurp(const fs::path& path) {
+// The whole file, as bytes.
+std::string ReadBytes(const fs::path& path) {
   if (!fs::exists(path)) Fail(path, "file not found");
   std::ifstream in(path, std::ios::binary);
   if (!in) Fail(path, "cannot open");
   std::string raw(static_cast<std::size_t>(fs::file_size(path)), '\0');
   in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
   if (!in) Fail(path, "read failed");
-  if (raw.size() < 2 || static_cast<unsigned char>(raw[0]) != 0x1f || static_cast<unsigned char>(raw[1]) != 0x8b) {
-    return raw;
-  }
-  gzFile gz = gzopen(path.c_str(), "rb");
-  if (!gz) Fail(path, "cannot open gzip stream");
+  return raw;
+}
+
+bool IsGzip(std::string_view raw) {
+  return raw.size() >= 2 && static_cast<unsigned char>(raw[0]) == 0x1f && static_cast<unsigned char>(raw[1]) == 0x8b;
+}
+
+// Inflates gzip data, member after member (as gzread does for concatenated
+// .gz files); bytes after the last member are ignored.
+std::string Gunzip(const fs::path& file, const std::string& raw) {
+  z_stream z{};
+  if (inflateInit2(&z, 16 + MAX_WBITS) != Z_OK) Fail(file, "cannot start the gzip decoder");
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(raw.data()));
+  z.avail_in = static_cast<uInt>(std::min<std::size_t>(raw.size(), std::numeric_limits<uInt>::max()));
   std::string out;
   char buf[1 << 16];
-  int n = 0;
-  while ((n = gzread(gz, buf, sizeof buf)) > 0) out.append(buf, static_cast<std::size_t>(n));
-  int err = 0;
-  const char* msg = gzerror(gz, &err);
-  const bool bad = n < 0 || (err != Z_OK && err != Z_STREAM_END);
-  const std::string why = bad ? std::string(msg ? msg : "error") : "";
-  gzclose(gz);
-  if (bad) Fail(path, "corrupt or truncated gzip data (" + why + ")");
+  int rc = Z_OK;
+  while (rc == Z_OK) {
+    z.next_out = reinterpret_cast<Bytef*>(buf);
+    z.avail_out = sizeof buf;
+    rc = inflate(&z, Z_NO_FLUSH);
+    out.append(buf, sizeof buf - z.avail_out);
+    const char* rest = reinterpret_cast<const char*>(z.next_in);
+    if (rc == Z_STREAM_END && IsGzip(std::string_view(rest, z.avail_in))) rc = inflateReset(&z);
+  }
+  const std::string why = z.msg ? z.msg : "unexpected end of data";
+  inflateEnd(&z);
+  if (rc != Z_STREAM_END) Fail(file, "corrupt or truncated gzip data (" + why + ")");
   return out;
+}
+
+std::string Decompressed(const fs::path& file, const std::string& raw) {
+  return IsGzip(raw) ? Gunzip(file, raw) : raw;
 }
 
 // Welds vertices with identical coordinates.
@@ -184,8 +202,12 @@ Eigen::Vector3d TriangleSurface::Max() const {
   return m;
 }
 
-TriangleSurface ReadStl(const fs::path& path) {
-  const std::string data = Slurp(path);
+TriangleSurface ReadStl(const fs::path& path) { return ParseStl(ReadBytes(path), path); }
+
+TriangleSurface ReadObj(const fs::path& path) { return ParseObj(ReadBytes(path), path); }
+
+TriangleSurface ParseStl(const std::string& bytes, const fs::path& path) {
+  const std::string data = Decompressed(path, bytes);
   if (data.empty()) Fail(path, "empty file; expected an STL surface");
   TriangleSurface s;
   const bool looks_ascii = data.compare(0, 5, "solid") == 0 &&
@@ -202,8 +224,8 @@ TriangleSurface ReadStl(const fs::path& path) {
   return s;
 }
 
-TriangleSurface ReadObj(const fs::path& path) {
-  const std::string data = Slurp(path);
+TriangleSurface ParseObj(const std::string& bytes, const fs::path& path) {
+  const std::string data = Decompressed(path, bytes);
   TriangleSurface s;
   s.source = path.string();
   std::vector<Eigen::Vector3d> raw;

@@ -31,6 +31,10 @@ struct TriangleSurface {
 TriangleSurface ReadSurface(const std::filesystem::path& path);
 TriangleSurface ReadStl(const std::filesystem::path& path);
 TriangleSurface ReadObj(const std::filesystem::path& path);
+// The same from the bytes of a file already in memory (gzip data is
+// decompressed); `name` names the file in messages.
+TriangleSurface ParseStl(const std::string& bytes, const std::filesystem::path& name);
+TriangleSurface ParseObj(const std::string& bytes, const std::filesystem::path& name);
 
 // Writes a binary STL atomically.
 void WriteStl(const TriangleSurface& surface, const std::filesystem::path& path);

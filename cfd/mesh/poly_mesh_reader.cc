@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -18,21 +19,7 @@ namespace fs = std::filesystem;
 // One OpenFOAM file: header fields and a cursor over the body.
 class FoamFile {
  public:
-  explicit FoamFile(const fs::path& path) : path_(path) {
-    if (!fs::exists(path)) {
-      if (fs::exists(path.string() + ".gz")) {
-        Fail(fmt::format("is gzip-compressed ({}.gz); expected an uncompressed file (run foamFormatConvert or set "
-                         "writeCompression off)",
-                         path.filename().string()));
-      }
-      Fail("does not exist; expected an OpenFOAM polyMesh file");
-    }
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    text_ = ss.str();
-    ParseHeader();
-  }
+  FoamFile(const fs::path& path, std::string text) : path_(path), text_(std::move(text)) { ParseHeader(); }
 
   [[noreturn]] void Fail(const std::string& what) const {
     throw DataFileError(fmt::format("{}: {}", path_.string(), what));
@@ -109,6 +96,7 @@ class FoamFile {
     pos_ += static_cast<std::size_t>(end - begin);
     return v;
   }
+  std::size_t remaining() const { return text_.size() - pos_; }
   // Raw bytes of a binary list body.
   const char* Bytes(std::size_t n, const std::string& what) {
     if (pos_ + n > text_.size()) {
@@ -220,29 +208,77 @@ class FoamFile {
   std::size_t scalar_bytes_ = 8;
 };
 
+// The text of one polyMesh file.
+std::string ReadFoamText(const fs::path& path) {
+  if (!fs::exists(path)) {
+    const std::string where = path.string();
+    if (fs::exists(where + ".gz")) {
+      throw DataFileError(fmt::format("{}: is gzip-compressed ({}.gz); expected an uncompressed file (run "
+                                      "foamFormatConvert or set writeCompression off)",
+                                      where, path.filename().string()));
+    }
+    throw DataFileError(where + ": does not exist; expected an OpenFOAM polyMesh file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A uniform list `N{v}` of labels is only meaningful for a tiny mesh (every
+// face owned by one cell, ...); longer ones are refused before they take the
+// memory of N labels.
+constexpr long long kMaxUniformLabels = 1 << 24;
+
+// A list count that the rest of the file can hold: at least `entry_bytes`
+// per entry, and at most the largest label kelvin stores (int).
+void CheckCount(FoamFile& file, long long n, std::size_t entry_bytes, const std::string& what) {
+  if (n < 0) file.FailAt(fmt::format("{} count is {}; expected >= 0", what, n));
+  if (n > std::numeric_limits<int>::max()) {
+    file.FailAt(fmt::format("{} count is {}; expected at most {} (kelvin's labels are 32-bit)", what, n,
+                            std::numeric_limits<int>::max()));
+  }
+  if (static_cast<std::size_t>(n) > file.remaining() / entry_bytes) {
+    file.FailAt(fmt::format("{} count is {} but only {} bytes follow; expected at least {} bytes per entry "
+                            "(truncated file or wrong count)",
+                            what, n, file.remaining(), entry_bytes));
+  }
+}
+
+long long CheckLabel(FoamFile& file, long long v, long long i, const std::string& what) {
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
+    file.Fail(fmt::format("entry {} of {} is {}; expected a 32-bit label", i, what, v));
+  }
+  return v;
+}
+
 // A list of labels: `N ( a b c )`, `N{v}`, or binary `N(<bytes>)`.
 std::vector<long long> ReadLabelList(FoamFile& file, const std::string& what) {
   const long long n = file.Integer(fmt::format("the number of {}", what));
-  if (n < 0) file.FailAt(fmt::format("{} count is {}; expected >= 0", what, n));
   std::vector<long long> out;
-  out.reserve(static_cast<std::size_t>(n));
   if (file.Peek() == '{') {
+    if (n < 0 || n > kMaxUniformLabels) {
+      file.FailAt(fmt::format("uniform list of {} {}; expected 0 to {} entries for a uniform list", n, what,
+                              kMaxUniformLabels));
+    }
     file.Expect('{', "");
-    const long long v = file.Integer(what);
+    const long long v = CheckLabel(file, file.Integer(what), 0, what);
     file.Expect('}', fmt::format("after the uniform value of {}", what));
     out.assign(static_cast<std::size_t>(n), v);
     return out;
   }
+  CheckCount(file, n, file.binary() ? file.label_bytes() : 2, what);
+  out.reserve(static_cast<std::size_t>(n));
   file.Expect('(', fmt::format("to open the list of {} {}", n, what));
   if (file.binary() && n > 0) {
     const char* p = file.Bytes(static_cast<std::size_t>(n) * file.label_bytes(), what);
-    for (long long i = 0; i < n; ++i) out.push_back(file.LabelFromBytes(p + i * file.label_bytes()));
+    for (long long i = 0; i < n; ++i) out.push_back(CheckLabel(file, file.LabelFromBytes(p + i * file.label_bytes()), i, what));
   } else {
     for (long long i = 0; i < n; ++i) {
       if (file.AtEnd() || file.Peek() == ')') {
         file.FailAt(fmt::format("list of {} ends after {} entries; expected {} (the count in the file)", what, i, n));
       }
-      out.push_back(file.Integer(fmt::format("entry {} of {}", i, what)));
+      out.push_back(CheckLabel(file, file.Integer(fmt::format("entry {} of {}", i, what)), i, what));
     }
   }
   if (file.AtEnd()) file.Fail(fmt::format("file is truncated: the list of {} {} has no closing ')'", n, what));
@@ -253,10 +289,9 @@ std::vector<long long> ReadLabelList(FoamFile& file, const std::string& what) {
   return out;
 }
 
-std::vector<Vector3> ReadPoints(const fs::path& dir) {
-  FoamFile file(dir / "points");
+std::vector<Vector3> ReadPoints(FoamFile file) {
   const long long n = file.Integer("the number of points");
-  if (n < 0) file.FailAt(fmt::format("point count is {}; expected >= 0", n));
+  CheckCount(file, n, file.binary() ? 3 * file.scalar_bytes() : 7, "point");
   std::vector<Vector3> pts;
   pts.reserve(static_cast<std::size_t>(n));
   file.Expect('(', "to open the point list");
@@ -285,8 +320,7 @@ std::vector<Vector3> ReadPoints(const fs::path& dir) {
   return pts;
 }
 
-std::vector<std::vector<int>> ReadFaces(const fs::path& dir) {
-  FoamFile file(dir / "faces");
+std::vector<std::vector<int>> ReadFaces(FoamFile file) {
   std::vector<std::vector<int>> faces;
   if (file.class_name() == "faceCompactList") {
     const std::vector<long long> offsets = ReadLabelList(file, "face offsets");
@@ -297,9 +331,10 @@ std::vector<std::vector<int>> ReadFaces(const fs::path& dir) {
                             offsets.back(), labels.size()));
     }
     for (std::size_t f = 0; f + 1 < offsets.size(); ++f) {
-      if (offsets[f + 1] < offsets[f] || offsets[f] < 0) {
-        file.Fail(fmt::format("face offsets decrease at face {} ({} then {}); expected a non-decreasing list", f,
-                              offsets[f], offsets[f + 1]));
+      if (offsets[f + 1] < offsets[f] || offsets[f] < 0 || offsets[f + 1] > offsets.back()) {
+        file.Fail(fmt::format("face offsets of face {} are {} and {}; expected a non-decreasing list from 0 to the {} "
+                              "point labels",
+                              f, offsets[f], offsets[f + 1], labels.size()));
       }
       faces.emplace_back(labels.begin() + offsets[f], labels.begin() + offsets[f + 1]);
     }
@@ -307,7 +342,7 @@ std::vector<std::vector<int>> ReadFaces(const fs::path& dir) {
   }
   if (file.binary()) file.Fail("binary faces must be a faceCompactList; found class " + file.class_name());
   const long long n = file.Integer("the number of faces");
-  if (n < 0) file.FailAt(fmt::format("face count is {}; expected >= 0", n));
+  CheckCount(file, n, 4, "face");
   file.Expect('(', "to open the face list");
   faces.reserve(static_cast<std::size_t>(n));
   for (long long f = 0; f < n; ++f) {
@@ -317,7 +352,10 @@ std::vector<std::vector<int>> ReadFaces(const fs::path& dir) {
     const long long m = file.Integer(fmt::format("the point count of face {}", f));
     file.Expect('(', fmt::format("to open face {}", f));
     std::vector<int> face;
-    for (long long i = 0; i < m; ++i) face.push_back(static_cast<int>(file.Integer(fmt::format("point {} of face {}", i, f))));
+    for (long long i = 0; i < m; ++i) {
+      face.push_back(static_cast<int>(CheckLabel(file, file.Integer(fmt::format("point {} of face {}", i, f)), i,
+                                                 fmt::format("face {}", f))));
+    }
     file.Expect(')', fmt::format("to close face {} ({} points)", f, m));
     faces.push_back(std::move(face));
   }
@@ -327,8 +365,7 @@ std::vector<std::vector<int>> ReadFaces(const fs::path& dir) {
   return faces;
 }
 
-std::vector<Patch> ReadBoundary(const fs::path& dir) {
-  FoamFile file(dir / "boundary");
+std::vector<Patch> ReadBoundary(FoamFile file) {
   const long long n = file.Integer("the number of patches");
   file.Expect('(', "to open the patch list");
   std::vector<Patch> patches;
@@ -345,8 +382,9 @@ std::vector<Patch> ReadBoundary(const fs::path& dir) {
       if (key == "nFaces" || key == "startFace") {
         char* end = nullptr;
         const long long v = std::strtoll(value.c_str(), &end, 10);
-        if (end == value.c_str() || *end != '\0') {
-          file.Fail(fmt::format("patch '{}': {} = '{}'; expected an integer", p.name, key, value));
+        if (end == value.c_str() || *end != '\0' || v < 0 || v > std::numeric_limits<int>::max()) {
+          file.Fail(fmt::format("patch '{}': {} = '{}'; expected an integer from 0 to {}", p.name, key, value,
+                                std::numeric_limits<int>::max()));
         }
         (key == "nFaces" ? n_faces : start) = v;
       }
@@ -378,20 +416,59 @@ std::vector<Patch> ReadBoundary(const fs::path& dir) {
 
 std::vector<int> ToInt(const std::vector<long long>& v) { return std::vector<int>(v.begin(), v.end()); }
 
+// Every cell has at least four faces and a face at most two cells, so a cell
+// label at or beyond the number of faces is an error (and would size the mesh's
+// per-cell arrays from a stray number).
+void CheckCellLabels(const std::vector<int>& cells, std::size_t n_faces, const fs::path& file,
+                     const std::string& what) {
+  for (std::size_t f = 0; f < cells.size(); ++f) {
+    if (cells[f] >= 0 && static_cast<std::size_t>(cells[f]) >= n_faces) {
+      throw DataFileError(fmt::format("{}: {} of face {} is cell {}; expected a cell index below the {} faces "
+                                      "(a polyMesh has fewer cells than faces)",
+                                      file.string(), what, f, cells[f], n_faces));
+    }
+  }
+}
+
 }  // namespace
+
+std::vector<Vector3> ParsePolyMeshPoints(const std::string& text, const fs::path& file) {
+  return ReadPoints(FoamFile(file, text));
+}
+
+std::vector<std::vector<int>> ParsePolyMeshFaces(const std::string& text, const fs::path& file) {
+  return ReadFaces(FoamFile(file, text));
+}
+
+std::vector<int> ParsePolyMeshLabels(const std::string& text, const fs::path& file, const std::string& what) {
+  FoamFile foam(file, text);
+  return ToInt(ReadLabelList(foam, what));
+}
+
+std::vector<Patch> ParsePolyMeshBoundary(const std::string& text, const fs::path& file) {
+  return ReadBoundary(FoamFile(file, text));
+}
 
 Mesh ReadPolyMesh(const fs::path& dir) {
   if (!fs::is_directory(dir)) {
     throw DataFileError(fmt::format("{}: not a directory; expected an OpenFOAM constant/polyMesh directory",
                                     dir.string()));
   }
-  std::vector<Vector3> points = ReadPoints(dir);
-  std::vector<std::vector<int>> faces = ReadFaces(dir);
-  FoamFile owner_file(dir / "owner");
-  std::vector<int> owner = ToInt(ReadLabelList(owner_file, "owners"));
-  FoamFile neighbour_file(dir / "neighbour");
-  std::vector<int> neighbour = ToInt(ReadLabelList(neighbour_file, "neighbours"));
-  std::vector<Patch> patches = ReadBoundary(dir);
+  PolyMeshText text;
+  for (auto [name, member] : {std::pair{"points", &PolyMeshText::points}, {"faces", &PolyMeshText::faces},
+                              {"owner", &PolyMeshText::owner}, {"neighbour", &PolyMeshText::neighbour},
+                              {"boundary", &PolyMeshText::boundary}}) {
+    text.*member = ReadFoamText(dir / name);
+  }
+  return ParsePolyMesh(text, dir);
+}
+
+Mesh ParsePolyMesh(const PolyMeshText& text, const fs::path& dir) {
+  std::vector<Vector3> points = ParsePolyMeshPoints(text.points, dir / "points");
+  std::vector<std::vector<int>> faces = ParsePolyMeshFaces(text.faces, dir / "faces");
+  std::vector<int> owner = ParsePolyMeshLabels(text.owner, dir / "owner", "owners");
+  std::vector<int> neighbour = ParsePolyMeshLabels(text.neighbour, dir / "neighbour", "neighbours");
+  std::vector<Patch> patches = ParsePolyMeshBoundary(text.boundary, dir / "boundary");
 
   const std::string where = (dir / "owner").string();
   if (owner.size() != faces.size()) {
@@ -402,6 +479,8 @@ Mesh ReadPolyMesh(const fs::path& dir) {
     throw DataFileError(fmt::format("{}: {} neighbours but only {} faces; expected at most one per face",
                                     (dir / "neighbour").string(), neighbour.size(), faces.size()));
   }
+  CheckCellLabels(owner, faces.size(), dir / "owner", "owner");
+  CheckCellLabels(neighbour, faces.size(), dir / "neighbour", "neighbour");
   for (std::size_t f = 0; f < faces.size(); ++f) {
     for (int p : faces[f]) {
       if (p < 0 || p >= static_cast<int>(points.size())) {
@@ -412,7 +491,7 @@ Mesh ReadPolyMesh(const fs::path& dir) {
     }
   }
   // Patches must tile the boundary faces exactly.
-  int expected = static_cast<int>(neighbour.size());
+  long long expected = static_cast<long long>(neighbour.size());
   for (const Patch& p : patches) {
     if (p.start != expected) {
       throw DataFileError(fmt::format("{}: patch '{}' has startFace {}; expected {} (right after the previous patch, "
@@ -421,7 +500,7 @@ Mesh ReadPolyMesh(const fs::path& dir) {
     }
     expected += p.size;
   }
-  if (expected != static_cast<int>(faces.size())) {
+  if (expected != static_cast<long long>(faces.size())) {
     throw DataFileError(fmt::format("{}: the patches cover {} boundary faces; expected {} (faces {} minus internal "
                                     "faces {})",
                                     (dir / "boundary").string(), expected - neighbour.size(),

@@ -62,7 +62,10 @@ void ReadSettle(const ConfigNode& n, CampaignFile::Cfd& cfd) {
 }  // namespace
 
 CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
-  const auto root = ConfigNode::LoadFile(path);
+  return LoadCampaignFile(ConfigNode::LoadFile(path), path);
+}
+
+CampaignFile LoadCampaignFile(const ConfigNode& root, const std::filesystem::path& path) {
   root.ExpectKeys({"campaign", "tests", "sampling", "cfd"});
   CampaignFile f;
   f.path = path;

@@ -59,6 +59,8 @@
 
 namespace kelvin::data {
 
+class ConfigNode;
+
 struct CampaignFile {
   std::string name;
   std::filesystem::path ship_file;
@@ -105,5 +107,7 @@ CaptiveShip LoadCaptiveShip(const std::filesystem::path& ship_file);
 // Reads and validates a campaign file; every unknown key or bad value is a
 // kelvin::ConfigError naming the file, line, key and what was expected.
 CampaignFile LoadCampaignFile(const std::filesystem::path& path);
+// The same from a campaign file already parsed; `path` locates the files it refers to.
+CampaignFile LoadCampaignFile(const ConfigNode& root, const std::filesystem::path& path);
 
 }  // namespace kelvin::data

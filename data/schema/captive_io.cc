@@ -211,6 +211,10 @@ void WriteRunCsv(const CaptiveRun& run, const fs::path& path) {
 CaptiveRun ReadRunCsv(const fs::path& path) {
   std::ifstream in(path);
   if (!in) throw DataFileError(fmt::format("{}: cannot open file", path.string()));
+  return ReadRunCsv(in, path);
+}
+
+CaptiveRun ReadRunCsv(std::istream& in, const fs::path& path) {
   const std::string src = path.string();
   CaptiveRun run;
   run.name = path.stem().string();
@@ -323,7 +327,9 @@ CaptiveRun ReadRunCsv(const fs::path& path) {
         run.name));
   }
   run.includes_rigid_body_inertia = ParseRigidBodyInertia(rbi->first, where(rbi->second));
-  for (const auto& [key, value] : attributes) {
+  for (const auto& entry : attributes) {
+    const std::string& key = entry.first;  // a plain reference: clang 14 cannot capture a binding
+    const auto& value = entry.second;
     const bool known = key == "kind" || key == "rigid_body_inertia" ||
                        std::any_of(kMotionAttributes.begin(), kMotionAttributes.end(),
                                    [&](const MotionAttribute& a) { return a.key == key; });

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <istream>
 
 #include "data/schema/captive_run.h"
 
@@ -26,5 +27,7 @@ void WriteRunCsv(const CaptiveRun& run, const std::filesystem::path& path);
 // Reads one run; the run is named by its '# run:' line or the file stem.
 // Throws kelvin::DataFileError with the file, line, run and channel.
 CaptiveRun ReadRunCsv(const std::filesystem::path& path);
+// The same from a stream; `path` names the run and the file in messages.
+CaptiveRun ReadRunCsv(std::istream& in, const std::filesystem::path& path);
 
 }  // namespace kelvin::data

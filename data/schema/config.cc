@@ -24,6 +24,17 @@ std::size_t EditDistance(std::string_view a, std::string_view b) {
   return prev[b.size()];
 }
 
+// The text of a map key of `map_path`; a ConfigError if the key is a list or
+// a map (YAML allows both, kelvin's files use names).
+std::string KeyName(const YAML::Node& key, const std::string& source, const std::string& map_path) {
+  if (!key.IsScalar()) {
+    throw ConfigError(fmt::format("{}:{}: a {} is used as a key in {}; expected a key name", source,
+                                  key.Mark().line + 1, key.IsMap() ? "map" : "list",
+                                  map_path.empty() ? "the top level" : "'" + map_path + "'"));
+  }
+  return key.Scalar();
+}
+
 }  // namespace
 
 std::optional<std::string> ClosestMatch(std::string_view word, std::span<const std::string> candidates) {
@@ -168,7 +179,7 @@ std::vector<ConfigNode> ConfigNode::Items() const {
 std::vector<std::string> ConfigNode::Keys() const {
   std::vector<std::string> keys;
   if (!node_.IsMap()) return keys;
-  for (const auto& kv : node_) keys.push_back(kv.first.as<std::string>());
+  for (const auto& kv : node_) keys.push_back(KeyName(kv.first, source_, path_));
   return keys;
 }
 
@@ -183,7 +194,7 @@ void ConfigNode::ExpectKeys(std::span<const std::string> valid) const {
     Fail("a map");
   }
   for (const auto& kv : node_) {
-    const std::string key = kv.first.as<std::string>();
+    const std::string key = KeyName(kv.first, source_, path_);
     if (std::find(valid.begin(), valid.end(), key) != valid.end()) continue;
     const auto mark = kv.first.Mark();
     std::string msg = fmt::format("{}:{}: unknown key '{}'; valid keys: {}", source_, mark.line + 1,

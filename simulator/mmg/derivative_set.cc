@@ -9,7 +9,10 @@
 namespace kelvin::sim {
 
 DerivativeSet LoadDerivativeSet(const std::filesystem::path& path) {
-  const data::ConfigNode root = data::ConfigNode::LoadFile(path);
+  return LoadDerivativeSet(data::ConfigNode::LoadFile(path), path);
+}
+
+DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesystem::path& path) {
   if (!root.IsMap()) root.Fail("a derivative set (a map with a 'hull' section)");
   // The sections `kelvin identify` writes (identification/derivative_set_io.h),
   // and the check.

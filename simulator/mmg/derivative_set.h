@@ -39,5 +39,7 @@ struct DerivativeSet {
 // Loads a derivative file; throws kelvin::ConfigError naming the file, line
 // and key for an unknown key, a missing derivative or a non-number.
 DerivativeSet LoadDerivativeSet(const std::filesystem::path& path);
+// The same from a derivative file already parsed (`path` names it).
+DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesystem::path& path);
 
 }  // namespace kelvin::sim

@@ -128,9 +128,10 @@ void ShipParameters::ValidateRudder(const std::string& src) const {
   if (rp.gamma_R_plus < 0) Unphysical(src, "rudder.gamma_R_plus", rp.gamma_R_plus, "a non-negative value");
 }
 
-ShipParameters LoadShip(const std::filesystem::path& path) {
+ShipParameters LoadShip(const std::filesystem::path& path) { return LoadShip(data::ConfigNode::LoadFile(path), path); }
+
+ShipParameters LoadShip(const data::ConfigNode& root, const std::filesystem::path& path) {
   using data::ConfigNode;
-  const ConfigNode root = ConfigNode::LoadFile(path);
   root.ExpectKeys({"ship", "principal", "hull", "propeller", "rudder", "actuators", "conditions", "geometry"});
   ShipParameters s;
 

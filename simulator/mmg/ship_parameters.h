@@ -16,6 +16,10 @@
 
 #include "simulator/mmg/open_water.h"
 
+namespace kelvin::data {
+class ConfigNode;
+}  // namespace kelvin::data
+
 namespace kelvin::sim {
 
 // The hull polynomial and added masses, templated so that identification can
@@ -144,6 +148,8 @@ struct ShipParameters {
 
 // Loads a ship file (data/ships/<ship>.yaml). Every unknown key is an error.
 ShipParameters LoadShip(const std::filesystem::path& path);
+// The same from a ship file already parsed; `path` locates the files it refers to.
+ShipParameters LoadShip(const data::ConfigNode& root, const std::filesystem::path& path);
 
 // Throws ConfigError naming `source` when the ship lacks what the MMG model
 // needs (hull derivatives, rudder, the MMG propeller keys).

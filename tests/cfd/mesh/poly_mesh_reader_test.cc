@@ -1,8 +1,10 @@
 #include "cfd/mesh/poly_mesh_reader.h"
 
 #include <fmt/format.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -205,6 +207,20 @@ TEST_F(BadPolyMesh, NegativeVolume) {
   ExpectError("polyMesh", "cell 0 has volume -1");
 }
 
+// Found by polymesh_fuzzer: a stray owner label sized the mesh's cell arrays
+// (6.7 GB for cell 1.6e9).
+TEST_F(BadPolyMesh, CellLabelBeyondTheFaces) {
+  const Mesh mesh = SampleMesh();
+  std::vector<int> owner(mesh.owner().begin(), mesh.owner().end());
+  owner.back() = 1600000000;
+  std::ostringstream os;
+  os << Header("labelList", "owner", false) << owner.size() << "\n(\n";
+  for (int o : owner) os << o << "\n";
+  os << ")\n";
+  WriteText(dir_ / "owner", os.str());
+  ExpectError("owner", "is cell 1600000000; expected a cell index below the");
+}
+
 TEST_F(BadPolyMesh, UnknownPatchType) {
   std::string text = ReadText(dir_ / "boundary");
   const std::size_t at = text.find("type wall");
@@ -293,6 +309,47 @@ TEST(PolyMeshReader, BlockMeshAgreesWithCheckMesh) {
                 binary ? "binary" : "ascii", q.total_volume, total, *std::min_element(mags.begin(), mags.end()),
                 *std::max_element(mags.begin(), mags.end()), min_area, max_area);
   }
+}
+
+// Defects the fuzz targets found (tests/fuzz/regressions), on single files.
+std::string ParseError(const std::function<void()>& parse) {
+  try {
+    parse();
+  } catch (const DataFileError& e) {
+    return e.what();
+  }
+  return "(no DataFileError)";
+}
+
+TEST(PolyMeshFiles, FaceOffsetsBeyondTheLabelsAreAnError) {
+  const std::string faces = Header("faceCompactList", "faces", false) + "3(0 9 4)\n4(0 1 2 3)\n";
+  EXPECT_THAT(ParseError([&] { ParsePolyMeshFaces(faces, "faces"); }),
+              ::testing::HasSubstr("face offsets of face 0 are 0 and 9; expected a non-decreasing list"));
+}
+
+TEST(PolyMeshFiles, ACountTheFileCannotHoldIsAnError) {
+  const std::string points = Header("vectorField", "points", false) + "1000000000000\n((0 0 0))\n";
+  EXPECT_THAT(ParseError([&] { ParsePolyMeshPoints(points, "points"); }),
+              ::testing::HasSubstr("point count is 1000000000000; expected at most"));
+  const std::string owner = Header("labelList", "owner", false) + "90000\n(0 1)\n";
+  EXPECT_THAT(ParseError([&] { ParsePolyMeshLabels(owner, "owner", "owners"); }),
+              ::testing::HasSubstr("owners count is 90000 but only"));
+}
+
+TEST(PolyMeshFiles, LabelsBeyond32BitsAreAnError) {
+  const std::string owner = Header("labelList", "owner", false) + "2\n(0 4294967296)\n";
+  EXPECT_THAT(ParseError([&] { ParsePolyMeshLabels(owner, "owner", "owners"); }),
+              ::testing::HasSubstr("entry 1 of owners is 4294967296; expected a 32-bit label"));
+  const std::string uniform = Header("labelList", "owner", false) + "2000000000{0}\n";
+  EXPECT_THAT(ParseError([&] { ParsePolyMeshLabels(uniform, "owner", "owners"); }),
+              ::testing::HasSubstr("uniform list of 2000000000 owners"));
+}
+
+TEST(PolyMeshFiles, NegativePatchSizesAreAnError) {
+  const std::string boundary =
+      Header("polyBoundaryMesh", "boundary", false) + "1\n(\nwalls { type wall; nFaces -5; startFace 3; }\n)\n";
+  EXPECT_THAT(ParseError([&] { ParsePolyMeshBoundary(boundary, "boundary"); }),
+              ::testing::HasSubstr("patch 'walls': nFaces = '-5'; expected an integer from 0 to"));
 }
 
 }  // namespace

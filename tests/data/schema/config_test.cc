@@ -101,5 +101,18 @@ TEST(ClosestMatchTest, SuggestsOnlyCloseWords) {
   EXPECT_FALSE(ClosestMatch("zzzzzzzzzz", keys).has_value());
 }
 
+// Found by the fuzz targets: yaml-cpp's own exception escaped for a key that
+// is a list or a map.
+TEST(ConfigTest, AListOrAMapAsAKeyIsAConfigError) {
+  const auto root = ConfigNode::LoadString("ship:\n  [0, 2.5]: 1\n", "ship.yaml");
+  try {
+    root["ship"].ExpectKeys({"name"});
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("ship.yaml:2: a list is used as a key in 'ship'; expected a key name"));
+  }
+  EXPECT_THROW(ConfigNode::LoadString("{a: 1}: 2\n", "case.yaml").Keys(), ConfigError);
+}
+
 }  // namespace
 }  // namespace kelvin::data
