@@ -231,7 +231,7 @@ TEST(CaseRunner, OldKeysNameTheirReplacement) {
     return s;
   };
   ExpectCaseConfigError(with("time: {dt: ", "time: {steady: {window: 10, tolerance: 1.0e-3, min_steps: 20}, dt: "),
-                        "expected a quantities list (drag, force, eta): the steady criterion changed");
+                        "expected a quantities list (drag, force, eta, ship_loads): the steady criterion changed");
   ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 1, direction: [1, 0, 0]}}"),
                         "key 'output.resistance'");
   ExpectCaseConfigError(with("forces: [ymax]}", "forces: [ymax], resistance: {speed: 1, direction: [1, 0, 0]}}"),

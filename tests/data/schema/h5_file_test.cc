@@ -161,3 +161,28 @@ TEST(H5FileTest, H5dumpReadsWrittenFile) {
 
 }  // namespace
 }  // namespace kelvin::data
+
+namespace kelvin::data {
+namespace {
+
+// A captive campaign file whose chunk of 'runs/drift/time' has a corrupt
+// filter mask (the deflate filter marked skipped) and 188 stored bytes: the
+// reader refuses it with one error instead of letting libhdf5 copy the whole
+// 32 kB chunk out of those 188 bytes (found by the captive_h5 fuzzer).
+TEST(H5Reader, CorruptUnfilteredChunkIsAnError) {
+  const auto file = kelvin::testing::SourceDir() / "tests/fuzz/regressions/captive_h5/h5dread_heap_overflow";
+  const H5Reader r(file);
+  try {
+    r.Read("runs/drift/time");
+    FAIL() << "a corrupt chunk was read";
+  } catch (const DataFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("'runs/drift/time': corrupt chunk 0: 188 bytes stored unfiltered where the "
+                                         "chunk needs 32768"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(r.Read("runs/drift/X").values.size(), 40u);  // its intact neighbour
+}
+
+}  // namespace
+}  // namespace kelvin::data
