@@ -10,16 +10,19 @@
 namespace kelvin::cfd {
 
 std::pair<std::string, std::string> SpheroidShape::Problem() const {
-  const std::pair<const char*, double> fields[] = {{"length", length}, {"diameter", diameter}, {"depth", depth}};
+  const std::pair<const char*, double> fields[] = {
+      {"length", length}, {"diameter", diameter}, {"depth", depth}};
   for (const auto& [key, v] : fields) {
     if (!(v > 0) || !std::isfinite(v)) return {key, "a finite length > 0 (m)"};
   }
   if (diameter > length) {
-    return {"diameter", fmt::format("at most the length {} m (a prolate spheroid or a sphere)", length)};
+    return {"diameter",
+            fmt::format("at most the length {} m (a prolate spheroid or a sphere)", length)};
   }
   if (!(depth > 0.5 * diameter)) {
-    return {"depth", fmt::format("more than half the diameter, {} m, so that the body lies below z = 0",
-                                 0.5 * diameter)};
+    return {"depth",
+            fmt::format("more than half the diameter, {} m, so that the body lies below z = 0",
+                        0.5 * diameter)};
   }
   return {};
 }

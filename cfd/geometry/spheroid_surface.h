@@ -25,6 +25,6 @@ struct SpheroidShape {
 // z = -depth; `rings` latitude rings (uniform in the polar angle, so the
 // ends are finer) and `segments` points around each ring; one vertex at
 // each end. Closed, consistently oriented, normals outward.
-TriangleSurface SpheroidSurface(const SpheroidShape& shape, int rings = 48, int segments = 40);
+TriangleSurface SpheroidSurface(const SpheroidShape& shape, int rings = 64, int segments = 64);
 
 }  // namespace kelvin::cfd

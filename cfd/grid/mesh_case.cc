@@ -119,11 +119,13 @@ void ParseWaves(const ConfigNode& w, MeshCase& c) {
   const double froude = w.GetPositive("froude");
   if (c.method == MeshMethod::kStructured) {
     c.structured.wave_froude = froude;
-    c.structured.cells_per_wave = Number(w, "cells_per_wavelength", c.structured.cells_per_wave, 0.0);
+    c.structured.cells_per_wave =
+        Number(w, "cells_per_wavelength", c.structured.cells_per_wave, 0.0);
     return;
   }
   c.snappy.wavelength = 2.0 * std::numbers::pi * froude * froude * HullLength(c);
-  c.snappy.cells_per_wavelength = Number(w, "cells_per_wavelength", c.snappy.cells_per_wavelength, 0.0);
+  c.snappy.cells_per_wavelength =
+      Number(w, "cells_per_wavelength", c.snappy.cells_per_wavelength, 0.0);
   if (c.snappy.cells_per_wavelength < 4 || c.snappy.cells_per_wavelength > 100)
     w["cells_per_wavelength"].Fail("a number in [4, 100]");
 }
@@ -158,7 +160,9 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
   const ConfigNode hull = mesh["hull"];
   hull.ExpectKeys({"wigley", "ship", "spheroid"});
   if (int(hull.Has("wigley")) + int(hull.Has("ship")) + int(hull.Has("spheroid")) != 1) {
-    hull.Fail("exactly one of 'wigley' (the formula), 'spheroid' (a submerged body) or 'ship' (a ship file)");
+    hull.Fail(
+        "exactly one of 'wigley' (the formula), 'spheroid' (a submerged body) or 'ship' (a ship "
+        "file)");
   }
   double ship_nu = 0.0;
   if (auto w = hull.Find("wigley")) {
@@ -213,7 +217,8 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
         "'structured' for the Wigley formula (the snappy path needs a ship file with a surface)");
   }
   if (c.method == MeshMethod::kStructured && c.spheroid) {
-    mesh["method"].Fail("'snappy' for a submerged spheroid (the structured grid needs a surface-piercing hull)");
+    mesh["method"].Fail(
+        "'snappy' for a submerged spheroid (the structured grid needs a surface-piercing hull)");
   }
   if (auto w = mesh.Find("waves")) ParseWaves(*w, c);
   if (auto f = mesh.Find("family")) {
@@ -248,9 +253,10 @@ namespace {
 std::string SnappyWaveReport(const SnappyOptions& o, const SnappyRun& run) {
   if (!(o.wavelength > 0)) return "";
   return fmt::format(
-      "waves: lambda = 2 pi Fn^2 L = {:.4g} m; free-surface (Kelvin wedge) box at level {}, cells {:.4g} m = "
-      "lambda / {:.3g} (asked: at most lambda / {:.3g})\n",
-      o.wavelength, run.wake_level, run.wake_cell, o.wavelength / run.wake_cell, o.cells_per_wavelength);
+      "waves: lambda = 2 pi Fn^2 L = {:.4g} m; free-surface (Kelvin wedge) box at level {}, "
+      "cells {:.4g} m = lambda / {:.3g} (asked: at most lambda / {:.3g})\n",
+      o.wavelength, run.wake_level, run.wake_cell, o.wavelength / run.wake_cell,
+      o.cells_per_wavelength);
 }
 
 std::string GridReport(const MeshCase& c, const Mesh& mesh, const GridSummary& g,
@@ -297,10 +303,10 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
     intake = in.Report();
     for (const auto& w : in.warnings) fmt::print(stderr, "kelvin mesh: WARNING: {}\n", w);
     if (c.method == MeshMethod::kStructured && surface.Max().z() <= 0.0) {
-      throw ConfigError(fmt::format(
-          "{}: mesh.method 'structured' with the fully submerged body of {}: expected 'snappy' (the structured "
-          "grid's sections must reach the waterline)",
-          c.source, c.ship_file.string()));
+      throw ConfigError(
+          fmt::format("{}: mesh.method 'structured' with the fully submerged body of {}: expected "
+                      "'snappy' (the structured grid's sections must reach the waterline)",
+                      c.source, c.ship_file.string()));
     }
     if (c.method == MeshMethod::kStructured) sections = std::make_unique<SurfaceSections>(surface);
   }

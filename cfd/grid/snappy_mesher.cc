@@ -70,7 +70,8 @@ void UnderwaterExtent(const TriangleSurface& hull, Eigen::Vector3d* lo, Eigen::V
 // The Kelvin wedge (half angle 19.47 deg) from just ahead of the bow: over
 // half a length behind the stern and a tenth of a length deep, or, with
 // waves, to the outlet, widened by the body's half beam and lambda / 6 deep.
-void WakeBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const SnappyOptions& o, Layout& l) {
+void WakeBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const SnappyOptions& o,
+             Layout& l) {
   const double L = l.length;
   const double x0 = hi.x() + 0.1 * L;
   const bool waves = o.wavelength > 0;
@@ -100,10 +101,11 @@ Layout MakeLayout(const TriangleSurface& hull, const SnappyOptions& o) {
                           -reach(o.depth, SnappyOptions::kWaveDepth));
   l.max = Eigen::Vector3d(hi.x() + reach(o.upstream, SnappyOptions::kWaveUpstream), width, 0.0);
   if (!(l.min.z() < lo.z()) || !(l.max.y() > hi.y()) || !(l.min.y() < lo.y())) {
-    throw ConfigError(fmt::format(
-        "snappy domain (half_width {} L, depth {} L, L = {:.4g} m) does not contain the hull of {} (lowest z = "
-        "{:.4g} m, y from {:.4g} to {:.4g} m): expected domain.depth and domain.half_width large enough",
-        o.half_width, o.depth, L, hull.source, lo.z(), lo.y(), hi.y()));
+    throw ConfigError(
+        fmt::format("snappy domain (half_width {} L, depth {} L, L = {:.4g} m) does not contain "
+                    "the hull of {} (lowest z = {:.4g} m, y from {:.4g} to {:.4g} m): expected "
+                    "domain.depth and domain.half_width large enough",
+                    o.half_width, o.depth, L, hull.source, lo.z(), lo.y(), hi.y()));
   }
   const double h = L / o.base_cells_per_length;
   const Eigen::Vector3d ext = l.max - l.min;
@@ -115,8 +117,8 @@ Layout MakeLayout(const TriangleSurface& hull, const SnappyOptions& o) {
   l.near_max = Eigen::Vector3d(hi.x() + 0.05 * L, hi.y() + 0.05 * L, 0.0);
   l.near_min = l.near_min.cwiseMax(l.min);
   // A point in the water away from every face: upstream, off the centreplane.
-  l.inside = Eigen::Vector3d(0.5 * (hi.x() + l.max.x()) + 0.1234567 * h, 0.4321 * l.max.y() + 0.0123 * h,
-                             0.6173 * l.min.z() + 0.0111 * h);
+  l.inside = Eigen::Vector3d(0.5 * (hi.x() + l.max.x()) + 0.1234567 * h,
+                             0.4321 * l.max.y() + 0.0123 * h, 0.6173 * l.min.z() + 0.0111 * h);
   return l;
 }
 
@@ -199,11 +201,13 @@ void SnappyOptions::Validate() const {
   }
   if (!(wavelength >= 0) || !std::isfinite(wavelength)) {
     throw ConfigError(fmt::format(
-        "snappy option 'wavelength' = {}: expected a finite length >= 0 (m; 0: no waves)", wavelength));
+        "snappy option 'wavelength' = {}: expected a finite length >= 0 (m; 0: no waves)",
+        wavelength));
   }
   if (!(cells_per_wavelength >= 4 && cells_per_wavelength <= 100)) {
-    throw ConfigError(fmt::format("snappy option 'cells_per_wavelength' = {}: expected a number in [4, 100]",
-                                  cells_per_wavelength));
+    throw ConfigError(
+        fmt::format("snappy option 'cells_per_wavelength' = {}: expected a number in [4, 100]",
+                    cells_per_wavelength));
   }
   if (!(feature_angle > 0 && feature_angle < 180)) {
     throw ConfigError(fmt::format(
@@ -224,14 +228,16 @@ int SnappyLayerCount(const SnappyOptions& o, double length) {
 
 int SnappyWakeLevel(const SnappyOptions& o, double length) {
   if (!(o.wavelength > 0)) return o.wake_level;
-  const double base = length / o.base_cells_per_length, target = o.wavelength / o.cells_per_wavelength;
+  const double base = length / o.base_cells_per_length,
+               target = o.wavelength / o.cells_per_wavelength;
   const int level =
       std::max(o.wake_level, static_cast<int>(std::ceil(std::log2(base / target) - 1e-9)));
   if (level > o.hull_level) {
     throw ConfigError(fmt::format(
-        "snappy option 'cells_per_wavelength' = {}: the free-surface cells (at most lambda / {} = {:.4g} m from "
-        "base cells of {:.4g} m) need refinement level {}, above hull_level = {}; expected fewer cells per "
-        "wavelength, or a higher hull_level or base_cells_per_length",
+        "snappy option 'cells_per_wavelength' = {}: the free-surface cells (at most lambda / {} "
+        "= {:.4g} m from base cells of {:.4g} m) need refinement level {}, above hull_level = "
+        "{}; expected fewer cells per wavelength, or a higher hull_level or "
+        "base_cells_per_length",
         o.cells_per_wavelength, o.cells_per_wavelength, target, base, level, o.hull_level));
   }
   return level;

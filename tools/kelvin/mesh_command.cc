@@ -25,8 +25,9 @@ void RunMesh(const MeshArgs& a) {
   cfd::MeshCase c = cfd::LoadMeshCase(a.case_file);
   if (!a.hull.empty()) {
     if (c.wigley || c.spheroid) {
-      throw ArgumentError(fmt::format("--hull {}: the mesh case {} uses the {} formula, not a ship file", a.hull,
-                                      a.case_file, c.wigley ? "Wigley" : "spheroid"));
+      throw ArgumentError(
+          fmt::format("--hull {}: the mesh case {} uses the {} formula, not a ship file", a.hull,
+                      a.case_file, c.wigley ? "Wigley" : "spheroid"));
     }
     c.hull_file = a.hull;
   }

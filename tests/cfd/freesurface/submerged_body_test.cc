@@ -36,8 +36,11 @@
 //   resistance integral for submerged sources (Havelock 1917, sphere as a
 //   doublet; Havelock 1931, "The wave resistance of a spheroid", Proc. R.
 //   Soc. Lond. A 131, 275-285). That theory leaves out the image of the body
-//   in the free surface and viscosity, and this grid is coarse, so it is
-//   reported, not asserted.
+//   in the free surface and viscosity, and this grid is coarse (the double
+//   body's C_P, 2.7e-3, is mostly numerical), so the ratio is reported and
+//   only checked to within a factor of two, a gross check of the level and
+//   sign (measured 2026-12-02: R_W 4.06 N against 3.92 N, ratio 1.04, on
+//   this single grid; no grid study).
 // Set KELVIN_SUBMERGED_KEEP=dir to keep the grid and the runs.
 #include <fmt/format.h>
 #include <gmock/gmock.h>
@@ -46,6 +49,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -64,6 +68,7 @@ namespace kelvin::cfd {
 namespace {
 
 namespace fs = std::filesystem;
+using kelvin::testing::ReadText;
 using ::testing::HasSubstr;
 
 constexpr double kPi = std::numbers::pi;
@@ -72,7 +77,9 @@ constexpr double kG = 9.81;
 // The body of data/cases/resistance/spheroid_mesh.yaml.
 constexpr SpheroidShape kSpheroid{1.0, 0.2, 0.25};
 
-double SpheroidVolume(const SpheroidShape& s) { return kPi / 6.0 * s.length * s.diameter * s.diameter; }
+double SpheroidVolume(const SpheroidShape& s) {
+  return kPi / 6.0 * s.length * s.diameter * s.diameter;
+}
 
 // Linear-theory (Neumann-Kelvin, deep water) wave resistance of a prolate
 // spheroid moving along its axis at depth f, as its double-body
@@ -122,8 +129,6 @@ std::string ErrorOf(const std::function<void()>& f) {
   return "(no error)";
 }
 
-std::string Slurp(const fs::path& p) { return kelvin::testing::ReadText(p); }
-
 // ------------------------------------------------------------- unit part
 
 TEST(SubmergedBody, SpheroidSurfaceIsClosedOutwardAndHasTheSpheroidVolume) {
@@ -133,15 +138,20 @@ TEST(SubmergedBody, SpheroidSurfaceIsClosedOutwardAndHasTheSpheroidVolume) {
   EXPECT_EQ(c.non_manifold_edges, 0u);
   EXPECT_EQ(c.inconsistent_edges, 0u);
   EXPECT_EQ(c.degenerate_triangles, 0u);
-  // The inscribed polyhedron of 48 rings x 40 segments: within 0.5%.
+  // The inscribed polyhedron of 64 rings x 64 segments: the 64-gon alone
+  // holds (64 / 2 pi) sin(2 pi / 64) = 99.84% of the circle's area.
   EXPECT_GT(c.underwater_volume, 0.0) << "normals point inward";
   EXPECT_NEAR(c.underwater_volume / SpheroidVolume(kSpheroid), 1.0, 5e-3);
   EXPECT_NEAR(s.Min().x(), 0.0, 1e-12);
   EXPECT_NEAR(s.Max().x(), 1.0, 1e-12);
   EXPECT_NEAR(s.Max().z(), -0.15, 1e-12);
-  EXPECT_THAT(ErrorOf([] { SpheroidSurface({1.0, 0.2, 0.05}); }),
+  EXPECT_THAT(ErrorOf([] {
+                SpheroidSurface({1.0, 0.2, 0.05});
+              }),
               HasSubstr("spheroid 'depth' = 0.05: expected more than half the diameter"));
-  EXPECT_THAT(ErrorOf([] { SpheroidSurface({1.0, 2.0, 5.0}); }),
+  EXPECT_THAT(ErrorOf([] {
+                SpheroidSurface({1.0, 2.0, 5.0});
+              }),
               HasSubstr("spheroid 'diameter' = 2: expected at most the length"));
 }
 
@@ -149,7 +159,8 @@ TEST(SubmergedBody, HullCheckRefusesASubmergedBodyUnlessAllowedAndThenOnlyAClose
   TriangleSurface s = SpheroidSurface(kSpheroid);
   s.source = "deep.stl";
   EXPECT_THAT(ErrorOf([&] { ValidateHull(s, 0.0); }),
-              HasSubstr("deep.stl: the hull lies entirely below the waterline (highest z = -0.15 <= waterline z = "
+              HasSubstr("deep.stl: the hull lies entirely below the waterline (highest z = -0.15 "
+                        "<= waterline z = "
                         "0); expected a surface-piercing hull"));
   EXPECT_THAT(ErrorOf([&] { ValidateHull(s, 0.0); }), HasSubstr("geometry.submerged: true"));
   const SurfaceCheck c = ValidateHull(s, 0.0, true);
@@ -161,8 +172,38 @@ TEST(SubmergedBody, HullCheckRefusesASubmergedBodyUnlessAllowedAndThenOnlyAClose
   EXPECT_GT(UnderwaterVolume(inward), 0.0);
   // A hole anywhere is refused: a submerged body has no deck to leave open.
   s.triangles.erase(s.triangles.begin() + 100);
-  EXPECT_THAT(ErrorOf([&] { ValidateHull(s, 0.0, true); }),
-              HasSubstr("deep.stl: 3 open edges on a fully submerged body; expected a closed surface"));
+  EXPECT_THAT(
+      ErrorOf([&] { ValidateHull(s, 0.0, true); }),
+      HasSubstr("deep.stl: 3 open edges on a fully submerged body; expected a closed surface"));
+}
+
+// A ship file for the spheroid written as an STL (file axes = ship axes).
+fs::path WriteSpheroidShip(const fs::path& dir, const std::string& extra_geometry) {
+  WriteStl(SpheroidSurface(kSpheroid), dir / "body.stl");
+  std::ofstream(dir / "body.yaml")
+      << "ship: {name: body}\nprincipal: {Lpp: 1.0, B: 0.2, d: 0.35}\n"
+         "geometry: {file: body.stl, length_unit: 1.0, waterline_z: 0.0"
+      << extra_geometry << "}\n";
+  return dir / "body.yaml";
+}
+
+TEST(SubmergedBody, ShipFileSaysSubmergedOrTheBodyIsRefused) {
+  kelvin::testing::ScopedTempDir dir;
+  EXPECT_THAT(ErrorOf([&] { LoadHull(LoadHullPlacement(WriteSpheroidShip(dir.path(), ""))); }),
+              HasSubstr("body.stl: the hull lies entirely below the waterline"));
+  const HullPlacement p = LoadHullPlacement(WriteSpheroidShip(dir.path(), ", submerged: true"));
+  EXPECT_TRUE(p.submerged);
+  const TriangleSurface s = LoadHull(p);
+  EXPECT_NEAR(UnderwaterVolume(s) / SpheroidVolume(kSpheroid), 1.0, 2e-3);
+  // The structured grid cannot take it: an error before any meshing.
+  const std::string text = fmt::format(
+      "mesh:\n  method: structured\n  hull: {{ship: {}}}\n  flow: {{reynolds: 1.0e6}}\noutput: "
+      "{{directory: "
+      "{}}}\n",
+      (dir / "body.yaml").string(), (dir / "out").string());
+  const MeshCase c = ParseMeshCase(text, "case.yaml", dir.path());
+  EXPECT_THAT(ErrorOf([&] { RunMeshCase(c, 1); }),
+              HasSubstr("mesh.method 'structured' with the fully submerged body"));
 }
 
 TEST(SubmergedBody, SnappyLayoutIsSizedByTheWavelength) {
@@ -178,19 +219,24 @@ TEST(SubmergedBody, SnappyLayoutIsSizedByTheWavelength) {
   // Base cells 0.2 m: level 1 gives 0.1 m = lambda / 15.7.
   EXPECT_EQ(SnappyWakeLevel(o, 1.0), 1);
   WriteSnappyCase(SpheroidSurface(kSpheroid), o, dir.path());
-  const std::string block = Slurp(dir / "system/blockMeshDict");
+  const std::string block = ReadText(dir / "system/blockMeshDict");
   // 3 lambda behind the aft end, 1 lambda ahead of the nose, 1.5 lambda to
   // the sides; 1 L deep (more than lambda / 2); top on z = 0.
-  EXPECT_THAT(block, HasSubstr(fmt::format("({:.9g} {:.9g} {:.9g})", -3 * lambda, -1.5 * lambda, -1.0)));
-  EXPECT_THAT(block, HasSubstr(fmt::format("({:.9g} {:.9g} {:.9g})", 1.0 + lambda, 1.5 * lambda, 0.0)));
+  EXPECT_THAT(block,
+              HasSubstr(fmt::format("({:.9g} {:.9g} {:.9g})", -3 * lambda, -1.5 * lambda, -1.0)));
+  EXPECT_THAT(block,
+              HasSubstr(fmt::format("({:.9g} {:.9g} {:.9g})", 1.0 + lambda, 1.5 * lambda, 0.0)));
   EXPECT_THAT(block, HasSubstr("freeSurface"));
-  const std::string snappy = Slurp(dir / "system/snappyHexMeshDict");
+  const std::string snappy = ReadText(dir / "system/snappyHexMeshDict");
   EXPECT_THAT(snappy, HasSubstr("kelvinWake { mode inside; levels ((1e15 1)); }"));
   // The wedge box reaches the outlet and lambda / 6 deep; the near box
   // spans the body up to z = 0.
-  EXPECT_THAT(snappy, HasSubstr(fmt::format("kelvinWake {{ type searchableBox; min ({:.9g} ", -3 * lambda)));
+  EXPECT_THAT(snappy, HasSubstr(fmt::format("kelvinWake {{ type searchableBox; min ({:.9g} ",
+                                            -3 * lambda)));
   EXPECT_THAT(snappy, HasSubstr(fmt::format(" {:.9g}); max (1.1 ", -lambda / 6)));
-  EXPECT_THAT(snappy, HasSubstr("nearHull { type searchableBox; min (-0.1 -0.15 -0.4); max (1.05 0.15 0);"));
+  EXPECT_THAT(
+      snappy,
+      HasSubstr("nearHull { type searchableBox; min (-0.1 -0.15 -0.4); max (1.05 0.15 0);"));
   // Asking for 30 cells per wavelength needs level 2; 100 needs level 4,
   // above the hull level: refused, naming the key.
   o.cells_per_wavelength = 30;
@@ -211,25 +257,32 @@ MeshCase Parse(const std::string& mesh_body) {
 TEST(SubmergedBody, MeshCaseNamesASpheroidAndSizesTheSnappyDomainByTheWaves) {
   const MeshCase c = Parse(
       "  method: snappy\n  hull: {spheroid: {length: 1.0, diameter: 0.2, depth: 0.25}}\n"
-      "  flow: {speed: 1.566, viscosity: 1.0e-6}\n  waves: {froude: 0.5, cells_per_wavelength: 15}\n");
+      "  flow: {speed: 1.566, viscosity: 1.0e-6}\n  waves: {froude: 0.5, cells_per_wavelength: "
+      "15}\n");
   EXPECT_TRUE(c.spheroid);
   EXPECT_DOUBLE_EQ(HullLength(c), 1.0);
   EXPECT_NEAR(c.reynolds, 1.566e6, 1.0);
   EXPECT_NEAR(c.snappy.wavelength, 2.0 * kPi * 0.25, 1e-12);
   EXPECT_EQ(c.snappy.cells_per_wavelength, 15.0);
+  EXPECT_THAT(
+      ErrorOf([] {
+        Parse(
+            "  method: structured\n  hull: {spheroid: {length: 1.0, diameter: 0.2, depth: 0.25}}\n"
+            "  flow: {reynolds: 1.0e6}\n");
+      }),
+      HasSubstr("key 'mesh.method' = 'structured': expected 'snappy' for a submerged spheroid"));
+  EXPECT_THAT(
+      ErrorOf([] {
+        Parse(
+            "  method: snappy\n  hull: {spheroid: {length: 1.0, diameter: 0.2, depth: 0.05}}\n"
+            "  flow: {reynolds: 1.0e6}\n");
+      }),
+      HasSubstr("key 'mesh.hull.spheroid.depth' = '0.05': expected more than half the diameter"));
   EXPECT_THAT(ErrorOf([] {
-                Parse("  method: structured\n  hull: {spheroid: {length: 1.0, diameter: 0.2, depth: 0.25}}\n"
-                      "  flow: {reynolds: 1.0e6}\n");
-              }),
-              HasSubstr("key 'mesh.method' = structured: expected 'snappy' for a submerged spheroid"));
-  EXPECT_THAT(ErrorOf([] {
-                Parse("  method: snappy\n  hull: {spheroid: {length: 1.0, diameter: 0.2, depth: 0.05}}\n"
-                      "  flow: {reynolds: 1.0e6}\n");
-              }),
-              HasSubstr("key 'mesh.hull.spheroid.depth' = 0.05: expected more than half the diameter"));
-  EXPECT_THAT(ErrorOf([] {
-                Parse("  method: snappy\n  hull: {spheroid: {length: 1, diameter: 0.2, depth: 0.25}, ship: x}\n"
-                      "  flow: {reynolds: 1.0e6}\n");
+                Parse(
+                    "  method: snappy\n  hull: {spheroid: {length: 1, diameter: 0.2, depth: 0.25}, "
+                    "ship: x}\n"
+                    "  flow: {reynolds: 1.0e6}\n");
               }),
               HasSubstr("expected exactly one of 'wigley' (the formula), 'spheroid'"));
 }
@@ -247,10 +300,12 @@ TEST(SubmergedBody, LinearWaveResistanceOfANearSphereIsHavelocksSphere) {
   EXPECT_NEAR(LinearWaveResistance({2 * a, 2 * a, f}, U, rho) / sphere, 1.0, 1e-6);
   // The line of sources of a nearly spherical spheroid (eccentricity 0.01)
   // acts as the sphere's doublet.
-  EXPECT_NEAR(LinearWaveResistance({2 * a, 2 * a * std::sqrt(1 - 1e-4), f}, U, rho) / sphere, 1.0, 1e-3);
+  EXPECT_NEAR(LinearWaveResistance({2 * a, 2 * a * std::sqrt(1 - 1e-4), f}, U, rho) / sphere, 1.0,
+              1e-3);
   // The resistance falls with depth at least as exp(-2 k0 f).
   EXPECT_LT(LinearWaveResistance({1.0, 0.2, 0.5}, 1.566, rho),
-            LinearWaveResistance({1.0, 0.2, 0.25}, 1.566, rho) * std::exp(-2.0 * k0 * 0.25 / (1.566 * 1.566)));
+            LinearWaveResistance({1.0, 0.2, 0.25}, 1.566, rho) *
+                std::exp(-2.0 * k0 * 0.25 / (1.566 * 1.566)));
 }
 
 // -------------------------------------------------------------- run part
@@ -261,7 +316,8 @@ struct CentreLine {
 
 CentreLine ReadCut(const data::H5Reader& r) {
   CentreLine c;
-  const std::vector<double> x = r.Read("wave_cuts/cut0/x").values, eta = r.Read("wave_cuts/cut0/eta").values;
+  const std::vector<double> x = r.Read("wave_cuts/cut0/x").values,
+                            eta = r.Read("wave_cuts/cut0/eta").values;
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (std::isfinite(eta[i])) {
       c.x.push_back(x[i]);
@@ -274,7 +330,7 @@ CentreLine ReadCut(const data::H5Reader& r) {
 TEST(SubmergedSpheroidRun, MeshesAndRunsToASteadyFreeSurfaceResult) {
   const kelvin::testing::ResistanceCases cases("KELVIN_SUBMERGED_KEEP");
   const fs::path grid = cases.Grid("spheroid_mesh.yaml", "spheroid_fn050");
-  const std::string quality = Slurp(grid / "quality.txt");
+  const std::string quality = ReadText(grid / "quality.txt");
   std::printf("%s\n", quality.c_str());
   EXPECT_THAT(quality, HasSubstr("negative or zero volumes: none"));
   const std::string tag = "hull patch volume (below z = 0): ";
@@ -300,8 +356,10 @@ TEST(SubmergedSpheroidRun, MeshesAndRunsToASteadyFreeSurfaceResult) {
   const double x_trough = c.x[trough - c.eta.begin()];
   const auto crest = std::max_element(c.eta.begin(), trough);  // behind it (x smaller)
   const double x_crest = c.x[crest - c.eta.begin()];
-  std::printf("centreline: trough %.4f m at x = %.3f m, crest %.4f m at x = %.3f m (body from 0 to %.1f m)\n",
-              *trough, x_trough, *crest, x_crest, L);
+  std::printf(
+      "centreline: trough %.4f m at x = %.3f m, crest %.4f m at x = %.3f m (body from 0 to %.1f "
+      "m)\n",
+      *trough, x_trough, *crest, x_crest, L);
   EXPECT_LT(*trough, 0.0);
   EXPECT_GT(x_trough, -0.5 * lambda);
   EXPECT_LT(x_trough, L);
@@ -309,23 +367,28 @@ TEST(SubmergedSpheroidRun, MeshesAndRunsToASteadyFreeSurfaceResult) {
   EXPECT_GT(x_crest, x_trough - lambda);
 
   // Wavelength: zero crossings from the trough back to the beach.
-  const std::vector<double> damping = r.Read("surface/damping").values, sx = r.Read("surface/x").values;
-  double beach = -1e300;  // downstream edge of the undamped surface
+  const std::vector<double> damping = r.Read("surface/damping").values,
+                            sx = r.Read("surface/x").values, sy = r.Read("surface/y").values;
+  double beach = -1e300;  // where the outlet beach starts on the centreline
   for (std::size_t i = 0; i < sx.size(); ++i) {
-    if (damping[i] > 0.0 && sx[i] < 0.0) beach = std::max(beach, sx[i]);
+    if (damping[i] > 0.0 && sx[i] < 0.0 && std::abs(sy[i]) < 0.125 * lambda)
+      beach = std::max(beach, sx[i]);
   }
   std::vector<double> crossings;
   for (std::size_t i = 0; i + 1 < c.x.size(); ++i) {
     const double x0 = c.x[i], x1 = c.x[i + 1], e0 = c.eta[i], e1 = c.eta[i + 1];
-    if (x0 > beach && x1 < x_trough && e0 * e1 < 0.0) crossings.push_back(x0 + (x1 - x0) * e0 / (e0 - e1));
+    if (x0 > beach && x1 < x_trough && e0 * e1 < 0.0)
+      crossings.push_back(x0 + (x1 - x0) * e0 / (e0 - e1));
   }
   ASSERT_GE(crossings.size(), 3u) << "beach starts at x = " << beach;
   const double measured =
       2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-  std::printf("transverse wavelength %.4f m from %zu crossings between x = %.3f and %.3f m: %+.2f%% against "
-              "2 pi U^2/g = %.4f m\n",
-              measured, crossings.size(), crossings.front(), crossings.back(), 100 * (measured / lambda - 1),
-              lambda);
+  std::printf(
+      "transverse wavelength %.4f m from %zu crossings between x = %.3f and %.3f m: %+.2f%% "
+      "against "
+      "2 pi U^2/g = %.4f m\n",
+      measured, crossings.size(), crossings.front(), crossings.back(),
+      100 * (measured / lambda - 1), lambda);
   EXPECT_NEAR(measured / lambda, 1.0, 0.075);
 
   // No waves ahead of the body.
@@ -333,23 +396,32 @@ TEST(SubmergedSpheroidRun, MeshesAndRunsToASteadyFreeSurfaceResult) {
   const double inlet = c.x.back();
   for (std::size_t i = 0; i < c.x.size(); ++i) {
     if (c.x[i] < L && c.x[i] > beach) peak = std::max(peak, std::abs(c.eta[i]));
-    if (c.x[i] > L + 0.25 * lambda && c.x[i] < inlet) upstream = std::max(upstream, std::abs(c.eta[i]));
+    if (c.x[i] > L + 0.25 * lambda && c.x[i] < inlet)
+      upstream = std::max(upstream, std::abs(c.eta[i]));
   }
-  std::printf("upstream (from lambda/4 ahead of the nose) max |eta| %.5f m = %.3f of the peak %.4f m behind\n",
-              upstream, upstream / peak, peak);
+  std::printf(
+      "upstream (from lambda/4 ahead of the nose) max |eta| %.5f m = %.3f of the peak %.4f m "
+      "behind\n",
+      upstream, upstream / peak, peak);
   EXPECT_LT(upstream, 0.25 * peak);
 
   // Wave resistance.
   const double cw = r.Read("C_W").at(0), rw = r.Read("R_W").at(0);
   const double theory = LinearWaveResistance(kSpheroid, U, rho);
   const double q = 0.5 * rho * r.Read("wetted_area").at(0) * U * U;
-  std::printf("C_W = C_P - C_P(double body) = %.4e (R_W %.4f N); linear theory (Havelock's line sources, "
-              "Neumann-Kelvin) R_W %.4f N, C_W %.4e: ratio %.3f. C_T %.4e, C_F %.4e, C_P %.4e, double body C_P "
-              "%.4e; eta %.4f to %.4f m\n",
-              cw, rw, theory, theory / q, rw / theory, r.Read("C_T").at(0), r.Read("C_F").at(0),
-              r.Read("C_P").at(0), r.Read("C_P_double_body").at(0), r.Read("eta_min").at(0),
-              r.Read("eta_max").at(0));
+  std::printf(
+      "C_W = C_P - C_P(double body) = %.4e (R_W %.4f N); linear theory (Havelock's line sources, "
+      "Neumann-Kelvin) R_W %.4f N, C_W %.4e: ratio %.3f. C_T %.4e, C_F %.4e, C_P %.4e, double body "
+      "C_P "
+      "%.4e; eta %.4f to %.4f m\n",
+      cw, rw, theory, theory / q, rw / theory, r.Read("C_T").at(0), r.Read("C_F").at(0),
+      r.Read("C_P").at(0), r.Read("C_P_double_body").at(0), r.Read("eta_min").at(0),
+      r.Read("eta_max").at(0));
   EXPECT_GT(cw, 0.0);
+  // A gross check only (a wrong free-surface level or sign would miss it by
+  // far): within a factor of two of the linear theory.
+  EXPECT_GT(rw / theory, 0.5);
+  EXPECT_LT(rw / theory, 2.0);
 }
 
 }  // namespace
