@@ -104,6 +104,9 @@ Hydrostatics ComputeHydrostatics(const TriangleSurface& s, double Lpp, double B,
     }
   }
   h.lcb = h.volume != 0 ? xv / h.volume : 0;
+  // A submerged body has no waterline and no waterplane (what the sum leaves
+  // of a closed surface is round-off).
+  if (xhi < xlo) h.waterplane_area = xwp = 0;
   h.lcf = h.waterplane_area != 0 ? xwp / h.waterplane_area : 0;
   h.draft = -zlo;
   h.lwl = xhi > xlo ? xhi - xlo : 0;

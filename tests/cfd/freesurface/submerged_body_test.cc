@@ -194,7 +194,14 @@ TEST(SubmergedBody, ShipFileSaysSubmergedOrTheBodyIsRefused) {
   const HullPlacement p = LoadHullPlacement(WriteSpheroidShip(dir.path(), ", submerged: true"));
   EXPECT_TRUE(p.submerged);
   const TriangleSurface s = LoadHull(p);
-  EXPECT_NEAR(UnderwaterVolume(s) / SpheroidVolume(kSpheroid), 1.0, 2e-3);
+  // The surface as written (binary STL: single-precision vertices).
+  EXPECT_NEAR(UnderwaterVolume(s) / UnderwaterVolume(SpheroidSurface(kSpheroid)), 1.0, 1e-6);
+  // No waterline: no waterplane and no centre of flotation.
+  const Hydrostatics h = ComputeHydrostatics(s, 1.0, 0.2, 0.35);
+  EXPECT_EQ(h.waterplane_area, 0.0);
+  EXPECT_EQ(h.lcf, 0.0);
+  EXPECT_NEAR(h.lcb, 0.5, 1e-6);
+  EXPECT_NEAR(h.draft, 0.35, 1e-6);
   // The structured grid cannot take it: an error before any meshing.
   const std::string text = fmt::format(
       "mesh:\n  method: structured\n  hull: {{ship: {}}}\n  flow: {{reynolds: 1.0e6}}\noutput: "
