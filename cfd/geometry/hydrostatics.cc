@@ -104,6 +104,9 @@ Hydrostatics ComputeHydrostatics(const TriangleSurface& s, double Lpp, double B,
     }
   }
   h.lcb = h.volume != 0 ? xv / h.volume : 0;
+  // A submerged body has no waterline and no waterplane (what the sum leaves
+  // of a closed surface is round-off).
+  if (xhi < xlo) h.waterplane_area = xwp = 0;
   h.lcf = h.waterplane_area != 0 ? xwp / h.waterplane_area : 0;
   h.draft = -zlo;
   h.lwl = xhi > xlo ? xhi - xlo : 0;
@@ -143,7 +146,7 @@ HullPlacement LoadHullPlacement(const fs::path& ship_file) {
   if (pr.Has("displacement")) p.displacement = pr.GetPositive("displacement");
   const auto g = root["geometry"];
   g.ExpectKeys({"file", "length_unit", "x_ap", "waterline_z", "bow_direction", "repair", "merge_tolerance",
-                "short_edge"});
+                "short_edge", "submerged"});
   fs::path file = g.Get<std::string>("file");
   if (file.is_relative()) file = ship_file.parent_path() / file;
   p.file = file;
@@ -157,6 +160,7 @@ HullPlacement LoadHullPlacement(const fs::path& ship_file) {
     g["bow_direction"].Fail("'+x' or '-x'");
   }
   p.repair = g.Get<bool>("repair", true);
+  p.submerged = g.Get<bool>("submerged", false);
   if (g.Has("merge_tolerance")) p.repair_options.merge_tolerance = g.GetPositive("merge_tolerance");
   if (g.Has("short_edge")) p.repair_options.short_edge = g.GetPositive("short_edge");
   return p;
@@ -175,7 +179,7 @@ TriangleSurface LoadHull(const HullPlacement& p, SurfaceCheck* check, RepairRepo
     o.waterline_z = 0.0;
     s = RepairSurface(s, o, repair);
   }
-  const SurfaceCheck c = ValidateHull(s, 0.0);
+  const SurfaceCheck c = ValidateHull(s, 0.0, p.submerged);
   if (check) *check = c;
   return s;
 }

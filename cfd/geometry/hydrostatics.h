@@ -64,6 +64,7 @@ struct HullPlacement {
   double scale = 1;              // model scale ratio
   std::string name;
   bool repair = true;            // geometry.repair: repair CAD defects before the checks
+  bool submerged = false;        // geometry.submerged: a closed body entirely below z = 0 is meant
   RepairOptions repair_options;  // geometry.merge_tolerance, geometry.short_edge (m)
 };
 

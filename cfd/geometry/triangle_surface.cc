@@ -358,7 +358,7 @@ SurfaceCheck CheckSurface(const TriangleSurface& s, double waterline_z) {
   return c;
 }
 
-SurfaceCheck ValidateHull(TriangleSurface& s, double waterline_z) {
+SurfaceCheck ValidateHull(TriangleSurface& s, double waterline_z, bool submerged_allowed) {
   const fs::path file = s.source;
   const SurfaceCheck c = CheckSurface(s, waterline_z);
   const Eigen::Vector3d lo = s.Min(), hi = s.Max();
@@ -367,10 +367,16 @@ SurfaceCheck ValidateHull(TriangleSurface& s, double waterline_z) {
                            "geometry.waterline_z and the length unit",
                            lo.z(), waterline_z));
   }
-  if (hi.z() <= waterline_z) {
+  const bool submerged = hi.z() <= waterline_z;
+  if (submerged && !submerged_allowed) {
     Fail(file, fmt::format("the hull lies entirely below the waterline (highest z = {} <= waterline z = {}); "
-                           "expected a surface-piercing hull",
+                           "expected a surface-piercing hull (check geometry.waterline_z and the length unit; for a "
+                           "body meant to run fully submerged set geometry.submerged: true in the ship file)",
                            hi.z(), waterline_z));
+  }
+  if (submerged && c.open_edges > 0) {
+    Fail(file, fmt::format("{} open edges on a fully submerged body; expected a closed surface ({})", c.open_edges,
+                           c.Summary()));
   }
   if (c.degenerate_triangles > 0) {
     Fail(file, fmt::format("{} degenerate (zero-area) triangles; expected a clean surface ({})",

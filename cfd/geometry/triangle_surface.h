@@ -57,8 +57,11 @@ SurfaceCheck CheckSurface(const TriangleSurface& surface, double waterline_z);
 // triangle) if the hull cannot be used: open edges below the waterline,
 // inconsistent normals, degenerate triangles, or a hull that does not cross
 // the waterline. Non-manifold edges (a rudder joined to the hull) and open
-// edges above the waterline are allowed. Flips the surface if its normals
-// point inward. Returns the check for reporting.
-SurfaceCheck ValidateHull(TriangleSurface& surface, double waterline_z);
+// edges above the waterline are allowed. With `submerged_allowed`, a body
+// entirely below the waterline is accepted too, if it is closed (no open
+// edge at all); without it such a body is refused (a ship hull placed too
+// deep). Flips the surface if its normals point inward. Returns the check
+// for reporting.
+SurfaceCheck ValidateHull(TriangleSurface& surface, double waterline_z, bool submerged_allowed = false);
 
 }  // namespace kelvin::cfd

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "cfd/geometry/hull_intake.h"
@@ -101,7 +102,41 @@ void ParseSnappy(const ConfigNode& s, SnappyOptions& o) {
   o.openfoam_bashrc = s.Get<std::string>("openfoam_bashrc", o.openfoam_bashrc);
 }
 
+void ParseSpheroid(const ConfigNode& node, MeshCase& c) {
+  node.ExpectKeys({"length", "diameter", "depth"});
+  c.spheroid = true;
+  c.spheroid_shape.length = node.GetPositive("length");
+  c.spheroid_shape.diameter = node.GetPositive("diameter");
+  c.spheroid_shape.depth = node.GetPositive("depth");
+  const auto [key, expected] = c.spheroid_shape.Problem();
+  if (!key.empty()) node[key].Fail(expected);
+}
+
+// mesh.waves: the structured grid's far-field spacing, or the snappy
+// domain and free-surface cells, from lambda = 2 pi Fn^2 L.
+void ParseWaves(const ConfigNode& w, MeshCase& c) {
+  w.ExpectKeys({"froude", "cells_per_wavelength"});
+  const double froude = w.GetPositive("froude");
+  if (c.method == MeshMethod::kStructured) {
+    c.structured.wave_froude = froude;
+    c.structured.cells_per_wave =
+        Number(w, "cells_per_wavelength", c.structured.cells_per_wave, 0.0);
+    return;
+  }
+  c.snappy.wavelength = 2.0 * std::numbers::pi * froude * froude * HullLength(c);
+  c.snappy.cells_per_wavelength =
+      Number(w, "cells_per_wavelength", c.snappy.cells_per_wavelength, 0.0);
+  if (c.snappy.cells_per_wavelength < 4 || c.snappy.cells_per_wavelength > 100)
+    w["cells_per_wavelength"].Fail("a number in [4, 100]");
+}
+
 }  // namespace
+
+double HullLength(const MeshCase& c) {
+  if (c.wigley) return c.wigley_length;
+  if (c.spheroid) return c.spheroid_shape.length;
+  return LoadHullPlacement(c.ship_file).Lpp;
+}
 
 MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
                        const fs::path& base_dir) {
@@ -123,9 +158,11 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
   }
 
   const ConfigNode hull = mesh["hull"];
-  hull.ExpectKeys({"wigley", "ship"});
-  if (hull.Has("wigley") == hull.Has("ship")) {
-    hull.Fail("exactly one of 'wigley' (the formula) or 'ship' (a ship file)");
+  hull.ExpectKeys({"wigley", "ship", "spheroid"});
+  if (int(hull.Has("wigley")) + int(hull.Has("ship")) + int(hull.Has("spheroid")) != 1) {
+    hull.Fail(
+        "exactly one of 'wigley' (the formula), 'spheroid' (a submerged body) or 'ship' (a ship "
+        "file)");
   }
   double ship_nu = 0.0;
   if (auto w = hull.Find("wigley")) {
@@ -134,6 +171,8 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
     c.wigley_length = w->GetPositive("length");
     c.wigley_beam = w->GetPositive("beam");
     c.wigley_draft = w->GetPositive("draft");
+  } else if (auto sph = hull.Find("spheroid")) {
+    ParseSpheroid(*sph, c);
   } else {
     const ConfigNode ship = hull["ship"];
     fs::path p = ship.As<std::string>();
@@ -160,9 +199,7 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
     double nu = ship_nu;
     if (flow.Has("viscosity")) nu = flow.GetPositive("viscosity");
     if (!(nu > 0)) flow.Fail("'viscosity' (m^2/s): the hull has no ship file with principal.nu");
-    double length = c.wigley_length;
-    if (!c.wigley) length = LoadHullPlacement(c.ship_file).Lpp;
-    c.reynolds = speed * length / nu;
+    c.reynolds = speed * HullLength(c) / nu;
   } else {
     flow.Fail("'reynolds', or 'speed' (m/s) with 'viscosity' (m^2/s)");
   }
@@ -179,12 +216,11 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
     mesh["method"].Fail(
         "'structured' for the Wigley formula (the snappy path needs a ship file with a surface)");
   }
-  if (auto w = mesh.Find("waves")) {
-    if (c.method != MeshMethod::kStructured) w->Fail("no 'waves' section: wave spacing is for method 'structured' only");
-    w->ExpectKeys({"froude", "cells_per_wavelength"});
-    c.structured.wave_froude = w->GetPositive("froude");
-    c.structured.cells_per_wave = Number(*w, "cells_per_wavelength", c.structured.cells_per_wave, 0.0);
+  if (c.method == MeshMethod::kStructured && c.spheroid) {
+    mesh["method"].Fail(
+        "'snappy' for a submerged spheroid (the structured grid needs a surface-piercing hull)");
   }
+  if (auto w = mesh.Find("waves")) ParseWaves(*w, c);
   if (auto f = mesh.Find("family")) {
     f->ExpectKeys({"ratio"});
     c.family_ratio = Number(*f, "ratio", c.family_ratio, 1.0);
@@ -212,6 +248,16 @@ MeshCase LoadMeshCase(const fs::path& path) {
 }
 
 namespace {
+
+// The free-surface cells of a snappy grid sized for waves.
+std::string SnappyWaveReport(const SnappyOptions& o, const SnappyRun& run) {
+  if (!(o.wavelength > 0)) return "";
+  return fmt::format(
+      "waves: lambda = 2 pi Fn^2 L = {:.4g} m; free-surface (Kelvin wedge) box at level {}, "
+      "cells {:.4g} m = lambda / {:.3g} (asked: at most lambda / {:.3g})\n",
+      o.wavelength, run.wake_level, run.wake_cell, o.wavelength / run.wake_cell,
+      o.cells_per_wavelength);
+}
 
 std::string GridReport(const MeshCase& c, const Mesh& mesh, const GridSummary& g,
                        const std::string& extra) {
@@ -247,6 +293,11 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
   if (c.wigley) {
     sections = std::make_unique<WigleySections>(c.wigley_length, c.wigley_beam, c.wigley_draft);
     length = c.wigley_length;
+  } else if (c.spheroid) {
+    surface = SpheroidSurface(c.spheroid_shape);
+    const SurfaceCheck check = ValidateHull(surface, 0.0, /*submerged_allowed=*/true);
+    intake = fmt::format("  surface: {} ({} triangles, {} vertices)\n  check: {}\n", surface.source,
+                         surface.triangles.size(), surface.vertices.size(), check.Summary());
   } else {
     HullPlacement placement = LoadHullPlacement(c.ship_file);
     if (!c.hull_file.empty()) placement.file = c.hull_file;
@@ -254,6 +305,12 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
     surface = in.surface;
     intake = in.Report();
     for (const auto& w : in.warnings) fmt::print(stderr, "kelvin mesh: WARNING: {}\n", w);
+    if (c.method == MeshMethod::kStructured && surface.Max().z() <= 0.0) {
+      throw ConfigError(
+          fmt::format("{}: mesh.method 'structured' with the fully submerged body of {}: expected "
+                      "'snappy' (the structured grid's sections must reach the waterline)",
+                      c.source, c.ship_file.string()));
+    }
     if (c.method == MeshMethod::kStructured) sections = std::make_unique<SurfaceSections>(surface);
   }
   std::vector<GridSummary> grids;
@@ -300,7 +357,8 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
       family_final_ratio = run.final_layer_ratio;
       s.seconds = run.seconds_block_mesh + run.seconds_features + run.seconds_snappy;
       s.snappy = run;
-      length = LoadHullPlacement(c.ship_file).Lpp;
+      length = HullLength(c);
+      extra += SnappyWaveReport(o, run);
       extra += fmt::format(
           "blockMesh {:.2f} s, surfaceFeatureExtract {:.2f} s, snappyHexMesh {:.2f} s\n"
           "base cells per length {}, hull cell {:.4g} m (level {})\n"

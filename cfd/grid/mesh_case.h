@@ -8,13 +8,14 @@
 //     hull:                     # exactly one of
 //       wigley: {length: 2.5, beam: 0.25, draft: 0.15625}
 //       ship: ../ships/dtc.yaml  # a ship file with a geometry section
+//       spheroid: {length: 1.0, diameter: 0.2, depth: 0.25}  # submerged; snappy only
 //     flow:                     # for the wall spacing: reynolds, or speed (+ viscosity)
 //       reynolds: 5.0e6
 //     y_plus: 1.0
 //     domain: {upstream: 1, downstream: 2, half_width: 1, depth: 1}   # hull lengths
 //     structured: {cells_hull: 60, ...}   # HullGridOptions
 //     snappy: {base_cells_per_length: 10, hull_level: 3, ...}   # SnappyOptions
-//     waves: {froude: 0.316, cells_per_wavelength: 16}   # optional, structured only
+//     waves: {froude: 0.316, cells_per_wavelength: 16}   # optional; Fn on the hull length
 //     family: {ratio: 1.41421356}
 //   output:
 //     directory: grids/wigley   # relative to the case file
@@ -29,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "cfd/geometry/spheroid_surface.h"
 #include "cfd/geometry/triangle_surface.h"
 #include "cfd/grid/hull_grid.h"
 #include "cfd/grid/snappy_mesher.h"
@@ -40,9 +42,12 @@ enum class MeshMethod { kStructured, kSnappy };
 struct MeshCase {
   std::string source;  // case file, for messages
   MeshMethod method = MeshMethod::kStructured;
-  // Hull: the Wigley formula, or a ship file (surface placed by LoadHull).
+  // Hull: the Wigley formula, a submerged spheroid, or a ship file (surface
+  // placed by LoadHull).
   bool wigley = false;
   double wigley_length = 0, wigley_beam = 0, wigley_draft = 0;  // m
+  bool spheroid = false;
+  SpheroidShape spheroid_shape;
   std::filesystem::path ship_file;
   // Replaces the ship file's geometry.file when set (`kelvin mesh --hull`):
   // hulls the project cannot ship, such as the KCS, come from the user.
@@ -55,6 +60,10 @@ struct MeshCase {
   std::filesystem::path output_directory;
   bool write_vtu = true;
 };
+
+// The hull length the case's Reynolds and Froude numbers are based on: the
+// Wigley's or spheroid's length, or the ship file's Lpp.
+double HullLength(const MeshCase& mesh_case);
 
 // Reads and checks a case file. Throws ConfigError naming the file, the line,
 // the key, the value and what was expected.

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -55,41 +56,68 @@ struct Layout {
   double length;
 };
 
-Layout MakeLayout(const TriangleSurface& hull, const SnappyOptions& o) {
-  // Underwater extent of the hull.
-  Eigen::Vector3d lo = hull.Max(), hi = hull.Min();
+// Extent of the part of the hull below z = 0 (all of a submerged body).
+void UnderwaterExtent(const TriangleSurface& hull, Eigen::Vector3d* lo, Eigen::Vector3d* hi) {
+  *lo = hull.Max();
+  *hi = hull.Min();
   for (const auto& v : hull.vertices) {
     if (v.z() > 0) continue;
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
+    *lo = lo->cwiseMin(v);
+    *hi = hi->cwiseMax(v);
   }
+}
+
+// The Kelvin wedge (half angle 19.47 deg) from just ahead of the bow: over
+// half a length behind the stern and a tenth of a length deep, or, with
+// waves, to the outlet, widened by the body's half beam and lambda / 6 deep.
+void WakeBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const SnappyOptions& o,
+             Layout& l) {
+  const double L = l.length;
+  const double x0 = hi.x() + 0.1 * L;
+  const bool waves = o.wavelength > 0;
+  const double x1 = waves ? l.min.x() : std::max(l.min.x(), lo.x() - 0.5 * L);
+  const double beam = waves ? std::max(std::abs(lo.y()), std::abs(hi.y())) : 0.0;
+  const double half = std::tan(19.47 * std::numbers::pi / 180.0) * (x0 - x1) + beam;
+  const double depth = waves ? std::max(0.1 * L, o.wavelength / 6.0) : 0.1 * L;
+  l.wake_min = Eigen::Vector3d(x1, std::max(l.min.y(), -half), std::max(l.min.z(), -depth));
+  l.wake_max = Eigen::Vector3d(x0, std::min(l.max.y(), half), 0.0);
+}
+
+Layout MakeLayout(const TriangleSurface& hull, const SnappyOptions& o) {
+  Eigen::Vector3d lo, hi;
+  UnderwaterExtent(hull, &lo, &hi);
   Layout l;
   l.length = hi.x() - lo.x();
   if (!(l.length > 0))
     throw DataFileError(fmt::format("{}: no part of the hull lies below z = 0", hull.source));
   const double L = l.length;
-  l.min = Eigen::Vector3d(lo.x() - o.downstream * L, -o.half_width * L, -o.depth * L);
-  l.max = Eigen::Vector3d(hi.x() + o.upstream * L, o.half_width * L, 0.0);
+  // Each extent: the option in hull lengths, or with waves at least the
+  // stated number of wavelengths.
+  const auto reach = [&](double lengths, double wavelengths) {
+    return std::max(lengths * L, wavelengths * o.wavelength);
+  };
+  const double width = reach(o.half_width, SnappyOptions::kWaveHalfWidth);
+  l.min = Eigen::Vector3d(lo.x() - reach(o.downstream, SnappyOptions::kWaveDownstream), -width,
+                          -reach(o.depth, SnappyOptions::kWaveDepth));
+  l.max = Eigen::Vector3d(hi.x() + reach(o.upstream, SnappyOptions::kWaveUpstream), width, 0.0);
   if (!(l.min.z() < lo.z()) || !(l.max.y() > hi.y()) || !(l.min.y() < lo.y())) {
     throw ConfigError(
-        fmt::format("snappy domain (half_width {} L, depth {} L) does not contain the hull of {}",
-                    o.half_width, o.depth, hull.source));
+        fmt::format("snappy domain (half_width {} L, depth {} L, L = {:.4g} m) does not contain "
+                    "the hull of {} (lowest z = {:.4g} m, y from {:.4g} to {:.4g} m): expected "
+                    "domain.depth and domain.half_width large enough",
+                    o.half_width, o.depth, L, hull.source, lo.z(), lo.y(), hi.y()));
   }
   const double h = L / o.base_cells_per_length;
   const Eigen::Vector3d ext = l.max - l.min;
   for (int a = 0; a < 3; ++a) l.cells[a] = std::max(1, static_cast<int>(std::lround(ext[a] / h)));
-  // Kelvin wedge from just ahead of the bow (half angle 19.47 deg), over
-  // half a length behind the stern and a tenth of a length deep.
-  const double x0 = hi.x() + 0.1 * L;
-  const double x1 = std::max(l.min.x(), lo.x() - 0.5 * L);
-  const double half = std::tan(19.47 * std::numbers::pi / 180.0) * (x0 - x1);
-  l.wake_min = Eigen::Vector3d(x1, std::max(l.min.y(), -half), std::max(l.min.z(), -0.1 * L));
-  l.wake_max = Eigen::Vector3d(x0, std::min(l.max.y(), half), 0.0);
+  WakeBox(lo, hi, o, l);
+  // Near the hull, up to z = 0: over a submerged body this is the explicit
+  // refinement between the body and the free surface above it.
   l.near_min = Eigen::Vector3d(lo.x() - 0.1 * L, lo.y() - 0.05 * L, lo.z() - 0.05 * L);
   l.near_max = Eigen::Vector3d(hi.x() + 0.05 * L, hi.y() + 0.05 * L, 0.0);
   l.near_min = l.near_min.cwiseMax(l.min);
   // A point in the water away from every face: upstream, off the centreplane.
-  l.inside = Eigen::Vector3d(hi.x() + 0.5 * o.upstream * L + 0.1234567 * h,
+  l.inside = Eigen::Vector3d(0.5 * (hi.x() + l.max.x()) + 0.1234567 * h,
                              0.4321 * l.max.y() + 0.0123 * h, 0.6173 * l.min.z() + 0.0111 * h);
   return l;
 }
@@ -171,6 +199,16 @@ void SnappyOptions::Validate() const {
     throw ConfigError(
         fmt::format("snappy option 'reynolds' = {}: expected a finite number >= 1000", reynolds));
   }
+  if (!(wavelength >= 0) || !std::isfinite(wavelength)) {
+    throw ConfigError(fmt::format(
+        "snappy option 'wavelength' = {}: expected a finite length >= 0 (m; 0: no waves)",
+        wavelength));
+  }
+  if (!(cells_per_wavelength >= 4 && cells_per_wavelength <= 100)) {
+    throw ConfigError(
+        fmt::format("snappy option 'cells_per_wavelength' = {}: expected a number in [4, 100]",
+                    cells_per_wavelength));
+  }
   if (!(feature_angle > 0 && feature_angle < 180)) {
     throw ConfigError(fmt::format(
         "snappy option 'feature_angle' = {}: expected degrees in (0, 180)", feature_angle));
@@ -186,6 +224,23 @@ int SnappyLayerCount(const SnappyOptions& o, double length) {
   if (o.expansion_ratio <= 1.0 + 1e-9) return std::clamp(static_cast<int>(std::ceil(ratio)), 1, 50);
   return std::clamp(static_cast<int>(std::ceil(std::log(ratio) / std::log(o.expansion_ratio))) + 1,
                     1, 50);
+}
+
+int SnappyWakeLevel(const SnappyOptions& o, double length) {
+  if (!(o.wavelength > 0)) return o.wake_level;
+  const double base = length / o.base_cells_per_length,
+               target = o.wavelength / o.cells_per_wavelength;
+  const int level =
+      std::max(o.wake_level, static_cast<int>(std::ceil(std::log2(base / target) - 1e-9)));
+  if (level > o.hull_level) {
+    throw ConfigError(fmt::format(
+        "snappy option 'cells_per_wavelength' = {}: the free-surface cells (at most lambda / {} "
+        "= {:.4g} m from base cells of {:.4g} m) need refinement level {}, above hull_level = "
+        "{}; expected fewer cells per wavelength, or a higher hull_level or "
+        "base_cells_per_length",
+        o.cells_per_wavelength, o.cells_per_wavelength, target, base, level, o.hull_level));
+  }
+  return level;
 }
 
 double SnappyHullCell(const SnappyOptions& o, double length) {
@@ -286,8 +341,9 @@ void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o,
                       "    writeObj no;\n}}\n",
                       180.0 - o.feature_angle));
 
+  const int wake_level = SnappyWakeLevel(o, l.length);
   const int near_level = o.near_level == SnappyOptions::kAutoLevel
-                             ? (o.hull_level + o.wake_level + 1) / 2
+                             ? (o.hull_level + wake_level + 1) / 2
                              : o.near_level;
   const int layers = SnappyLayerCount(o, l.length);
   std::string s = Header("snappyHexMeshDict");
@@ -309,7 +365,7 @@ void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o,
       "        nearHull {{ mode inside; levels ((1e15 {})); }}\n"
       "        kelvinWake {{ mode inside; levels ((1e15 {})); }}\n    }}\n"
       "    locationInMesh {};\n    allowFreeStandingZoneFaces true;\n}}\n\n",
-      o.hull_level, o.hull_level, o.hull_level, o.feature_angle, near_level, o.wake_level,
+      o.hull_level, o.hull_level, o.hull_level, o.feature_angle, near_level, wake_level,
       Vec(l.inside));
   s += "snapControls\n{\n    nSmoothPatch 3;\n    tolerance 2.0;\n    nSolveIter 50;\n    "
        "nRelaxIter 5;\n"
@@ -356,6 +412,8 @@ Mesh RunSnappy(const TriangleSurface& hull, const SnappyOptions& o, const fs::pa
   r.first_layer_thickness = SnappyFirstLayer(o, length);
   r.final_layer_ratio = SnappyFinalLayerRatio(o, length);
   r.layers = SnappyLayerCount(o, length);
+  r.wake_level = SnappyWakeLevel(o, length);
+  r.wake_cell = length / o.base_cells_per_length / std::pow(2.0, r.wake_level);
   ReadSnappyLayerTable(case_dir / "log.snappyHexMesh", "hull", &r.layers_kept,
                        &r.thickness_kept_percent);
   if (run) *run = r;

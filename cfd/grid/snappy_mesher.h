@@ -1,5 +1,6 @@
 // The snappyHexMesh path for hulls the structured generator cannot grid
-// (bulbous bows, transoms, appendages): writes an OpenFOAM case for the
+// (bulbous bows, transoms, appendages) and for bodies entirely below z = 0
+// (submarines, towed bodies): writes an OpenFOAM case for the
 // double-body domain below z = 0 (blockMesh background box with its top on
 // the calm waterline, so the hull is cut there; snappyHexMesh refinement on
 // the hull, refinement boxes for the Kelvin wake, prism layers sized from a
@@ -46,6 +47,19 @@ struct SnappyOptions {
   double expansion_ratio = 1.2;
   double y_plus = 60.0;
   double reynolds = 5e6;
+  // Waves (0: none): the transverse wavelength lambda = 2 pi U^2 / g (m).
+  // The domain then reaches at least kWaveUpstream lambda ahead of the body,
+  // kWaveDownstream lambda behind it, kWaveHalfWidth lambda to each side and
+  // kWaveDepth lambda deep (the domain options in lengths still hold as
+  // minimums), and the free-surface box (the Kelvin wedge from just ahead of
+  // the body to the outlet, lambda / 6 deep) is refined until its cells are
+  // at most lambda / cells_per_wavelength, whatever wake_level says.
+  double wavelength = 0.0;
+  double cells_per_wavelength = 16.0;
+  static constexpr double kWaveUpstream = 1.0;
+  static constexpr double kWaveDownstream = 3.0;
+  static constexpr double kWaveHalfWidth = 1.5;
+  static constexpr double kWaveDepth = 0.5;
   // Surface features sharper than this angle (degrees) are snapped to.
   double feature_angle = 30.0;
   // OpenFOAM environment script.
@@ -63,6 +77,8 @@ struct SnappyRun {
   double first_layer_thickness = 0;  // m, requested (SnappyFirstLayer)
   int layers = 0;                    // requested prism layers
   double final_layer_ratio = 0;      // requested outermost layer / hull cell
+  int wake_level = 0;                // of the Kelvin-wedge box (SnappyWakeLevel)
+  double wake_cell = 0;              // m, cell size there
   // What snappyHexMesh kept, from the layer table at the end of its log
   // (negative when the log has no table): mean layers per hull face and the
   // kept share of the requested layer thickness (%).
@@ -73,6 +89,11 @@ struct SnappyRun {
 // The number of layers WriteSnappyCase requests for `options` and a hull of
 // length `length`.
 int SnappyLayerCount(const SnappyOptions& options, double length);
+
+// The refinement level of the Kelvin-wedge (free-surface) box: wake_level,
+// raised until the cells there are at most wavelength /
+// cells_per_wavelength when options.wavelength > 0.
+int SnappyWakeLevel(const SnappyOptions& options, double length);
 
 // The hull surface cell size length / base_cells_per_length / 2^hull_level.
 double SnappyHullCell(const SnappyOptions& options, double length);

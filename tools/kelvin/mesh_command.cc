@@ -24,9 +24,10 @@ struct MeshArgs {
 void RunMesh(const MeshArgs& a) {
   cfd::MeshCase c = cfd::LoadMeshCase(a.case_file);
   if (!a.hull.empty()) {
-    if (c.wigley) {
-      throw ArgumentError(fmt::format("--hull {}: the mesh case {} uses the Wigley formula, not a ship file", a.hull,
-                                    a.case_file));
+    if (c.wigley || c.spheroid) {
+      throw ArgumentError(
+          fmt::format("--hull {}: the mesh case {} uses the {} formula, not a ship file", a.hull,
+                      a.case_file, c.wigley ? "Wigley" : "spheroid"));
     }
     c.hull_file = a.hull;
   }

@@ -90,7 +90,8 @@ TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
                    "    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}\n    ship: a.yaml"));
       }),
       HasSubstr(
-          "key 'mesh.hull' = (a map): expected exactly one of 'wigley' (the formula) or 'ship'"));
+          "key 'mesh.hull' = (a map): expected exactly one of 'wigley' (the formula), 'spheroid' (a submerged "
+          "body) or 'ship'"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("draft: 0.15625", "draft: -0.1")); }),
               HasSubstr("key 'mesh.hull.wigley.draft' = '-0.1': expected a positive number"));
   EXPECT_THAT(
