@@ -41,7 +41,7 @@ def fuzz(build, target, runs, seconds, work):
     os.makedirs(corpus, exist_ok=True)
     os.makedirs(artifacts, exist_ok=True)
     source = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    env = dict(os.environ, UBSAN_OPTIONS="print_stacktrace=1",
+    env = dict(os.environ, UBSAN_OPTIONS="print_stacktrace=1", ASAN_OPTIONS="allocator_may_return_null=1",
                LSAN_OPTIONS="suppressions=" + os.path.join(source, "tests/fuzz/lsan.supp"))
     cmd = [os.path.join(build, "tests/fuzz", target + "_fuzzer"), f"-runs={runs}", f"-max_total_time={int(seconds)}",
            "-timeout=10", "-rss_limit_mb=2048", "-print_funcs=0", f"-artifact_prefix={artifacts}/", "-print_final_stats=1",
