@@ -20,7 +20,11 @@
 //                             the hull is outside the domain and they are
 //                             only counted.
 // Open edges below the waterline are left for ValidateHull to refuse: closing
-// a hole would invent hull shape.
+// a hole would invent hull shape. On a surface with non-manifold edges (a
+// rudder joined along an edge), orienting and sliver removal treat the parts
+// meeting there separately; the whole surface then keeps the sense it had
+// (by the sign of its immersed volume), but a part that was inside out on
+// its own stays so and shows in the hydrostatics.
 #pragma once
 
 #include <cstddef>
