@@ -408,7 +408,9 @@ bool ExecuteJob(Context& ctx, Job& job) {
   if (job.settle) {
     settle.settled = d.steady.settled ? 1 : 0;
     settle.change = d.steady.force_change;
-    settle.t_settle = c.solver->time() - job.settle->criterion.window;
+    // The criterion's window holds the newest sample at least `window` back;
+    // half a step earlier keeps that sample in the analysis despite round-off.
+    settle.t_settle = c.solver->time() - job.settle->criterion.window - 0.5 * job.dt;
     job.steps = job.step;  // a settled run ends early
   }
   files.WriteResult(settle);

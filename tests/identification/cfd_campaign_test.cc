@@ -249,7 +249,8 @@ TEST(CfdCampaign, StaticDriftRunsEndOnTheSteadyCriterion) {
     EXPECT_EQ(a.settled, 1) << a.name;
     EXPECT_LT(a.settle_change, 0.01) << a.name;
     EXPECT_LT(a.time.back(), b.time.back() - 0.5) << a.name << " did not end early";
-    EXPECT_NEAR(a.t_settle, a.time.back() - 1.0, 1e-9) << a.name;
+    EXPECT_NEAR(a.t_settle, a.time.back() - 1.0 - 0.5 * (a.time[1] - a.time[0]), 1e-9) << a.name;
+    EXPECT_EQ(wa.end - wa.begin, 11u) << a.name;  // the 1 s window at dt 0.1 s, both ends included
     EXPECT_GE(a.time[wa.begin], a.t_settle - 1e-9) << a.name;
     EXPECT_EQ(b.settled, 0) << b.name;
     EXPECT_NEAR(b.time.back(), 15.0, 1e-6) << b.name;
