@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
 #include <vector>
 
@@ -47,22 +46,11 @@ Soup ToSoup(const TriangleSurface& s) {
 TriangleSurface FromSoup(const Soup& soup, const std::string& source) {
   TriangleSurface s;
   s.source = source;
-  std::map<std::array<double, 3>, int> index;
-  std::vector<int> map(soup.points.size(), -1);
+  for (const Point& p : soup.points) s.vertices.emplace_back(p.x(), p.y(), p.z());
   for (const auto& poly : soup.polygons) {
-    std::array<int, 3> t{};
-    for (int c = 0; c < 3; ++c) {
-      int& m = map[poly[c]];
-      if (m < 0) {
-        const Point& p = soup.points[poly[c]];
-        auto [it, fresh] = index.try_emplace({p.x(), p.y(), p.z()}, static_cast<int>(s.vertices.size()));
-        if (fresh) s.vertices.emplace_back(p.x(), p.y(), p.z());
-        m = it->second;
-      }
-      t[c] = m;
-    }
-    if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) s.triangles.push_back(t);
+    s.triangles.push_back({static_cast<int>(poly[0]), static_cast<int>(poly[1]), static_cast<int>(poly[2])});
   }
+  WeldIdenticalVertices(s);
   return s;
 }
 

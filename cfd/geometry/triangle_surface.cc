@@ -295,6 +295,18 @@ TriangleSurface ReadSurface(const fs::path& path) {
   Fail(path, "unknown surface format; expected .stl, .stl.gz, .obj or .obj.gz");
 }
 
+void WeldIdenticalVertices(TriangleSurface& s) {
+  TriangleSurface welded;
+  welded.source = s.source;
+  VertexWelder weld(welded);
+  for (const auto& t : s.triangles) {
+    std::array<int, 3> w{};
+    for (int c = 0; c < 3; ++c) w[c] = weld.Add(s.vertices[t[c]]);
+    if (w[0] != w[1] && w[1] != w[2] && w[0] != w[2]) welded.triangles.push_back(w);
+  }
+  s = std::move(welded);
+}
+
 void WriteStl(const TriangleSurface& s, const fs::path& path) {
   std::string out(80, '\0');
   const std::string header = "kelvin binary STL";

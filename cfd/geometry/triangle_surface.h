@@ -36,6 +36,11 @@ TriangleSurface ReadObj(const std::filesystem::path& path);
 TriangleSurface ParseStl(const std::string& bytes, const std::filesystem::path& name);
 TriangleSurface ParseObj(const std::string& bytes, const std::filesystem::path& name);
 
+// Welds vertices with identical coordinates (the readers' welding), keeping
+// only the vertices triangles use, in order of first use, and dropping the
+// triangles that lose a corner to the weld.
+void WeldIdenticalVertices(TriangleSurface& surface);
+
 // Writes a binary STL atomically.
 void WriteStl(const TriangleSurface& surface, const std::filesystem::path& path);
 

@@ -141,6 +141,22 @@ void FlipTriangles(TriangleSurface& s, int n) {
   for (int k = 0; k < n; ++k) std::swap(s.triangles[tris[k]][1], s.triangles[tris[k]][2]);
 }
 
+// The DTC with some of each defect above.
+TriangleSurface WithEveryDefect() {
+  TriangleSurface s = CleanDtc();
+  SplitVertices(s, 20);
+  AddMicroEdges(s, 3, 2e-6);
+  AddSlivers(s, 8);
+  FlipTriangles(s, 5);
+  return s;
+}
+
+// The intake of a surface in ship axes, through an OBJ file of its own.
+HullIntake IntakeOf(const TriangleSurface& s) {
+  ScopedTempDir tmp;
+  return TakeInHull(PlacementOf(s, tmp.path()));
+}
+
 void ExpectSameHydrostatics(const HullIntake& in) {
   const HullPlacement p = LoadHullPlacement(kDtcShip);
   const Hydrostatics clean = ComputeHydrostatics(CleanDtc(), p.Lpp, p.B, p.T);
@@ -168,8 +184,7 @@ std::string RefusalWithoutRepair(const TriangleSurface& s) {
 }
 
 TEST(SurfaceRepair, CleanDtcIsLeftAloneAndHasNoWarning) {
-  ScopedTempDir tmp;
-  const HullIntake in = TakeInHull(PlacementOf(CleanDtc(), tmp.path()));
+  const HullIntake in = IntakeOf(CleanDtc());
   std::printf("%s", in.Report().c_str());
   EXPECT_FALSE(in.repair.Changed()) << in.repair.Summary();
   EXPECT_EQ(in.repair.self_intersections_above, 0u);
@@ -182,8 +197,7 @@ TEST(SurfaceRepair, NearDuplicateVerticesAreMerged) {
   TriangleSurface s = CleanDtc();
   SplitVertices(s, 50);
   EXPECT_THAT(RefusalWithoutRepair(s), HasSubstr("open edges below the waterline"));
-  ScopedTempDir tmp;
-  const HullIntake in = TakeInHull(PlacementOf(s, tmp.path()));
+  const HullIntake in = IntakeOf(s);
   EXPECT_EQ(in.repair.merged_vertices, 50u) << in.repair.Summary();
   EXPECT_EQ(in.surface.vertices.size(), CleanDtc().vertices.size());
   ExpectSameHydrostatics(in);
@@ -195,8 +209,7 @@ TEST(SurfaceRepair, MicrometreEdgesAreCollapsed) {
   for (double length : {2e-6, 30e-6}) {
     TriangleSurface s = CleanDtc();
     AddMicroEdges(s, 3, length);
-    ScopedTempDir tmp;
-    const HullIntake in = TakeInHull(PlacementOf(s, tmp.path()));
+    const HullIntake in = IntakeOf(s);
     EXPECT_EQ(length < in.repair.merge_tolerance ? in.repair.merged_vertices : in.repair.collapsed_edges, 3u)
         << in.repair.Summary();
     EXPECT_EQ(in.repair.removed_triangles, 6u) << in.repair.Summary();
@@ -209,8 +222,7 @@ TEST(SurfaceRepair, SliversAreRemoved) {
   TriangleSurface s = CleanDtc();
   AddSlivers(s, 8);
   EXPECT_THAT(RefusalWithoutRepair(s), HasSubstr("8 degenerate (zero-area) triangles"));
-  ScopedTempDir tmp;
-  const HullIntake in = TakeInHull(PlacementOf(s, tmp.path()));
+  const HullIntake in = IntakeOf(s);
   EXPECT_EQ(in.repair.fixed_slivers + in.repair.removed_triangles, 8u) << in.repair.Summary();
   ExpectSameHydrostatics(in);
 }
@@ -219,20 +231,14 @@ TEST(SurfaceRepair, FlippedTrianglesAreReoriented) {
   TriangleSurface s = CleanDtc();
   FlipTriangles(s, 12);
   EXPECT_THAT(RefusalWithoutRepair(s), HasSubstr("inconsistent normals"));
-  ScopedTempDir tmp;
-  const HullIntake in = TakeInHull(PlacementOf(s, tmp.path()));
+  const HullIntake in = IntakeOf(s);
   EXPECT_EQ(in.repair.reoriented_triangles, 12u) << in.repair.Summary();
   ExpectSameHydrostatics(in);
 }
 
 TEST(SurfaceRepair, AllDefectsTogetherAreRepaired) {
-  TriangleSurface s = CleanDtc();
-  SplitVertices(s, 20);
-  AddMicroEdges(s, 3, 2e-6);
-  AddSlivers(s, 8);
-  FlipTriangles(s, 5);
-  ScopedTempDir tmp;
-  const HullIntake in = TakeInHull(PlacementOf(s, tmp.path()));
+  const TriangleSurface s = WithEveryDefect();
+  const HullIntake in = IntakeOf(s);
   std::printf("%s", in.Report().c_str());
   EXPECT_TRUE(in.repair.Changed());
   ExpectSameHydrostatics(in);
@@ -241,13 +247,9 @@ TEST(SurfaceRepair, AllDefectsTogetherAreRepaired) {
 // The repaired surface meshes (snappyHexMesh, a coarse grid of about 15k
 // cells) to the same hull volume as the clean one within 0.1%.
 TEST(SurfaceRepair, RepairedSurfaceMeshesLikeTheCleanOne) {
-  TriangleSurface s = CleanDtc();
-  SplitVertices(s, 20);
-  AddMicroEdges(s, 3, 2e-6);
-  AddSlivers(s, 8);
-  FlipTriangles(s, 5);
+  const TriangleSurface s = WithEveryDefect();
+  const HullIntake in = IntakeOf(s);
   ScopedTempDir tmp;
-  const HullIntake in = TakeInHull(PlacementOf(s, tmp.path()));
   SnappyOptions o;
   o.reynolds = 9.1e6;
   o.y_plus = 100;
@@ -265,9 +267,8 @@ TEST(SurfaceRepair, RepairedSurfaceMeshesLikeTheCleanOne) {
 TEST(SurfaceRepair, HoleBelowTheWaterlineIsRefused) {
   TriangleSurface s = CleanDtc();
   s.triangles.erase(s.triangles.begin() + static_cast<long>(SubmergedTriangles(s, 5).front()));
-  ScopedTempDir tmp;
   try {
-    TakeInHull(PlacementOf(s, tmp.path()));
+    IntakeOf(s);
     FAIL() << "a hull with a hole below the waterline was accepted";
   } catch (const DataFileError& e) {
     EXPECT_THAT(e.what(), HasSubstr("3 open edges below the waterline"));
@@ -288,9 +289,8 @@ TEST(SurfaceRepair, SelfIntersectionBelowTheWaterlineIsRefused) {
     s.triangles.push_back({base + q[0], base + q[1], base + q[2]});
     s.triangles.push_back({base + q[0], base + q[2], base + q[3]});
   }
-  ScopedTempDir tmp;
   try {
-    TakeInHull(PlacementOf(s, tmp.path()));
+    IntakeOf(s);
     FAIL() << "a self-intersecting hull was accepted";
   } catch (const DataFileError& e) {
     EXPECT_THAT(e.what(), HasSubstr("intersects itself below the waterline"));
