@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <set>
+
 #include "cfd/turbulence/turbulence_model.h"
 
 namespace kelvin::cfd {
@@ -32,22 +34,37 @@ void FieldOutput::Write(const PimpleSolver& solver) {
   }
   WriteVtu(file, mesh, cell_data);
   pvd_.Add(solver.time(), file);
-  // Patches whose conditions have their own unknowns (eta): a surface file
-  // with those, p and U per face, in a series of their own.
+  // Surface files, each in a series of its own: the patches whose conditions
+  // have their own unknowns (eta), and the turbulence model's walls, with
+  // their wall shear stress and first-cell y+ (where the friction comes
+  // from, and where the grid leaves the wall treatment's range).
+  const TurbulenceModel* t = solver.turbulence();
+  std::set<std::string> walls;
+  if (t) {
+    for (const WallPatchStats& w : t->WallStats()) walls.insert(w.patch);
+  }
   const int ni = mesh.n_internal_faces();
   for (int k = 0; k < solver.p().n_patches(); ++k) {
-    auto fields = solver.p().bc(k).FaceFields();
-    if (fields.empty()) continue;
     const Patch& patch = mesh.patches()[k];
+    auto fields = solver.p().bc(k).FaceFields();
+    const bool wall = walls.count(patch.name) > 0;
+    if (fields.empty() && !wall) continue;
     std::vector<VtuCellData> data;
     for (auto& [name, values] : fields) data.push_back({name, 1, std::move(values)});
-    VtuCellData pf{"p", 1, {}}, uf{"U", 3, {}};
+    VtuCellData pf{"p", 1, {}}, uf{"U", 3, {}}, tau{"wallShearStress", 3, {}}, yp{"yPlus", 1, {}};
     for (int f = patch.start; f < patch.start + patch.size; ++f) {
       pf.values.push_back(solver.p().boundary()[f - ni]);
       for (int d = 0; d < 3; ++d) uf.values.push_back(solver.U().boundary()[f - ni][d]);
+      if (!wall) continue;
+      for (int d = 0; d < 3; ++d) tau.values.push_back(t->wall_shear_stress()[f - ni][d]);
+      yp.values.push_back(t->y_plus()[f - ni]);
     }
     data.push_back(std::move(pf));
     data.push_back(std::move(uf));
+    if (wall) {
+      data.push_back(std::move(tau));
+      data.push_back(std::move(yp));
+    }
     const fs::path surface_file = directory_ / fmt::format("{}_{:06d}.vtp", patch.name, solver.step());
     WritePatchVtp(surface_file, mesh, patch, data);
     auto [series, inserted] = surfaces_.try_emplace(patch.name, directory_ / (patch.name + ".pvd"));

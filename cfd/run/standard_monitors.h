@@ -1,7 +1,8 @@
 // The monitors every `kelvin run` may carry (cfd/run/monitor.h):
 // - FieldOutput: VTU cell fields and a PVD series every output.vtu_interval
 //   steps and at the last step, and a VTP surface series of each patch whose
-//   condition has its own unknowns (eta);
+//   condition has its own unknowns (eta) and of each turbulence wall (p, U,
+//   wallShearStress (kinematic, m^2/s^2, acting on the wall) and yPlus);
 // - TurbulenceReport: residuals of k and omega, the cells the bound step
 //   lifted, and y+ (min, mean, max) on each wall patch, per step;
 // - ForceCoefficients: with reference.speed, the per-step resistance

@@ -114,6 +114,7 @@ KOmegaSst::KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std:
   }
   wall_cell_omega_.assign(wall_cells_.size(), w_in);
   wall_cell_production_.assign(wall_cells_.size(), -1.0);
+  wall_cell_strain_.assign(wall_cells_.size(), -1.0);
 }
 
 void KOmegaSst::Initialize(const VectorField& U, std::span<const double> flux) {
@@ -129,6 +130,7 @@ void KOmegaSst::UpdateWall(const VectorField& U) {
   const double y_lam = opt_.wall_law.YPlusLaminar();
   const double cmu25 = std::pow(opt_.beta_star, 0.25);
   std::vector<double> omega_sum(mesh_.n_cells(), 0.0), prod_sum(mesh_.n_cells(), 0.0);
+  std::vector<double> strain_sum(mesh_.n_cells(), 0.0);
   std::vector<int> count(mesh_.n_cells(), 0), log_count(mesh_.n_cells(), 0);
   for (std::size_t p = 0; p < roles_.size(); ++p) {
     if (roles_[p] != TurbulencePatchRole::kWall) continue;
@@ -152,6 +154,7 @@ void KOmegaSst::UpdateWall(const VectorField& U) {
       ++count[c];
       if (y_plus_[b] > y_lam) {
         prod_sum[c] += u_tau * u_tau * cmu25 * std::sqrt(std::max((*k_)[c], 0.0)) / (opt_.wall_law.kappa * y);
+        strain_sum[c] += u_tau / (opt_.wall_law.kappa * y);
         ++log_count[c];
       }
     }
@@ -160,14 +163,20 @@ void KOmegaSst::UpdateWall(const VectorField& U) {
     const int c = wall_cells_[i];
     wall_cell_omega_[i] = omega_sum[c] / count[c];
     wall_cell_production_[i] = log_count[c] > 0 ? prod_sum[c] / log_count[c] : -1.0;
+    wall_cell_strain_[i] = log_count[c] > 0 ? strain_sum[c] / log_count[c] : -1.0;
   }
 }
 
 void KOmegaSst::UpdateViscosity() {
   const int nc = mesh_.n_cells();
+  std::vector<double> strain(nc);
+  for (int c = 0; c < nc; ++c) strain[c] = std::sqrt(S2_[c]);
+  for (std::size_t i = 0; i < wall_cells_.size(); ++i) {
+    if (wall_cell_strain_[i] >= 0.0) strain[wall_cells_[i]] = wall_cell_strain_[i];
+  }
   for (int c = 0; c < nc; ++c) {
     const double k = (*k_)[c], w = (*omega_)[c];
-    nut_[c] = opt_.a1 * k / std::max(opt_.a1 * w, std::sqrt(S2_[c]) * F2_[c]);
+    nut_[c] = opt_.a1 * k / std::max(opt_.a1 * w, strain[c] * F2_[c]);
   }
   UpdateFaceViscosity();
 }

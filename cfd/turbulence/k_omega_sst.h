@@ -27,7 +27,15 @@
 // (wall_functions.h); omega in the wall cells is fixed to the blended
 // viscous/log value; k has zero gradient at the wall; in log-layer wall
 // cells (y+ above the linear/log intersection) the k production is the
-// wall-function value u_tau^2 * Cmu^0.25 sqrt(k) / (kappa y).
+// wall-function value u_tau^2 * Cmu^0.25 sqrt(k) / (kappa y), and the
+// strain rate in their nu_t limiter is the log law's u_tau / (kappa y): the
+// cell gradient of a wall cell sees the jump from the wall value to the
+// cell value, U_P / y_P, which overstates the log-layer strain by the
+// factor kappa u+ (about 7 at y+ 100), so the limiter would cut the wall
+// cell's nu_t by that factor where the log layer has k / omega = kappa u_tau y,
+// starve the face between the wall cell and the next of momentum diffusion
+// and lower U_P and the friction with it (a 4-20% friction deficit on the
+// DTC's wall-function grids, BENCHMARKS.md doublebody_dtc).
 #pragma once
 
 #include <memory>
@@ -133,6 +141,9 @@ class KOmegaSst : public TurbulenceModel {
   std::vector<int> wall_cells_;
   std::vector<double> wall_cell_omega_;
   std::vector<double> wall_cell_production_;  // -1: use the cell production
+  // Strain rate u_tau / (kappa y) of the log law in log-layer wall cells, for
+  // the nu_t limiter (-1: the cell's own strain rate).
+  std::vector<double> wall_cell_strain_;
   NonOrthGeometry geo_;
   Gradient grad_;
   SparseSystem system_;

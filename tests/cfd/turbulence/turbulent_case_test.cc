@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -39,6 +40,17 @@ boundary:
   ymax: {U: {type: noSlip}, p: {type: zeroGradient}}
 output: {directory: out, vtu_interval: 0, checkpoint_interval: 5, forces: [ymin]}
 )";
+
+// The values of the ASCII DataArray `name` of a VTK XML file.
+std::vector<double> VtpArray(const std::string& xml, const std::string& name) {
+  const std::size_t at = xml.find("Name=\"" + name + "\"");
+  if (at == std::string::npos) return {};
+  const std::size_t begin = xml.find('>', at) + 1, end = xml.find("</DataArray>", begin);
+  std::istringstream in(xml.substr(begin, end - begin));
+  std::vector<double> v;
+  for (double x; in >> x;) v.push_back(x);
+  return v;
+}
 
 std::string CaseText(double end) {
   std::string s = kCase;
@@ -95,6 +107,19 @@ TEST(TurbulentCase, WritesTurbulenceOutputsAndStaysPositive) {
   }
   // The flow drags the walls downstream (force on the patch along +x).
   EXPECT_GT(h.Read("forces/ymin/viscous").at(9, 0), 0.0);
+  // Each wall's surface file carries the wall shear stress and y+ per face;
+  // over the patch (24 faces of 4/24 x 0.1 m^2) the shear stress adds up to
+  // the viscous force of the history (the default rho, 1000 kg/m^3).
+  std::stringstream vtp;
+  vtp << std::ifstream(tmp / "out" / "ymin_000010.vtp").rdbuf();
+  const std::vector<double> tau = VtpArray(vtp.str(), "wallShearStress");
+  const std::vector<double> y_plus = VtpArray(vtp.str(), "yPlus");
+  ASSERT_EQ(tau.size(), 3u * 24u);
+  ASSERT_EQ(y_plus.size(), 24u);
+  double fx = 0.0;
+  for (std::size_t i = 0; i < 24; ++i) fx += 1000.0 * tau[3 * i] * (4.0 / 24.0) * 0.1;
+  EXPECT_NEAR(fx, h.Read("forces/ymin/viscous").at(9, 0), 1e-9 * std::abs(fx));
+  EXPECT_NEAR(*std::max_element(y_plus.begin(), y_plus.end()), yp.at(9, 2), 1e-9 * yp.at(9, 2));
 }
 
 TEST(TurbulentCase, RestartIsBitwise) {
