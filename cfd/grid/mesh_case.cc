@@ -374,6 +374,12 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
             "requested thickness\n",
             run.layers_kept, run.layers, run.thickness_kept_percent);
       }
+      if (run.layers_area_percent >= 0) {
+        extra += fmt::format(
+            "layers kept over the hull area: {:.1f}% of the requested count; {:.1f}% of the area "
+            "has none\n",
+            run.layers_area_percent, run.area_without_layers_percent);
+      }
       extra +=
           fmt::format("hull surface volume below z = 0: {:.9g} m^3\n", UnderwaterVolume(surface));
     }

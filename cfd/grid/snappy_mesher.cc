@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -287,6 +288,50 @@ bool ReadSnappyLayerTable(const fs::path& log, const std::string& patch, double*
   return found;
 }
 
+std::vector<double> ReadSnappyFaceLayers(const fs::path& field, const std::string& patch, int faces) {
+  std::ifstream in(field);
+  if (!in) return {};
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  auto fail = [&](const std::string& what) -> std::vector<double> {
+    throw DataFileError(fmt::format("{}: {} (snappyHexMesh's per-face layer counts of patch '{}', {} faces)",
+                                    field.string(), what, patch, faces));
+  };
+  const std::size_t boundary = text.find("boundaryField");
+  if (boundary == std::string::npos) return fail("no boundaryField");
+  // The patch entry: its name as a whole word followed by '{'.
+  std::size_t at = boundary;
+  for (;;) {
+    at = text.find(patch, at + 1);
+    if (at == std::string::npos) return fail("no entry for the patch");
+    const std::size_t brace = text.find_first_not_of(" \t\r\n", at + patch.size());
+    if (std::isspace(static_cast<unsigned char>(text[at - 1])) && brace != std::string::npos && text[brace] == '{')
+      break;
+  }
+  const std::size_t value = text.find("value", at);
+  if (value == std::string::npos) return fail("the patch entry has no value");
+  std::istringstream words(text.substr(value + 5));
+  std::string kind;
+  words >> kind;
+  if (kind == "uniform") {
+    double n = 0;
+    if (!(words >> n)) return fail("a uniform value that is not a number");
+    return std::vector<double>(static_cast<std::size_t>(faces), n);
+  }
+  std::string type;
+  long count = -1;
+  char open = 0;
+  if (kind != "nonuniform" || !(words >> type >> count >> open) || type != "List<scalar>" || open != '(')
+    return fail("expected 'uniform <n>' or 'nonuniform List<scalar> <count> ( ... )'");
+  if (count != faces) return fail(fmt::format("{} values, expected one per face", count));
+  std::vector<double> layers(static_cast<std::size_t>(count));
+  for (double& n : layers) {
+    if (!(words >> n) || n < 0) return fail("a count that is not a non-negative number");
+  }
+  return layers;
+}
+
 void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o,
                      const fs::path& case_dir) {
   o.Validate();
@@ -396,9 +441,32 @@ void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o,
        "    minDeterminant 0.001;\n    minFaceWeight 0.05;\n    minVolRatio 0.01;\n    "
        "minTriangleTwist -1;\n"
        "    nSmoothScale 4;\n    errorReduction 0.75;\n    relaxed { maxNonOrtho 75; }\n}\n\n"
-       "mergeTolerance 1e-6;\n";
+       "mergeTolerance 1e-6;\n"
+       "writeFlags (layerFields);  // 0/nSurfaceLayers: the layers kept per face\n";
   WriteFileAtomically(case_dir / "system" / "snappyHexMeshDict", s);
 }
+
+namespace {
+
+// The hull-area shares of the layers snappyHexMesh kept (SnappyRun).
+void SummarizeFaceLayers(const Mesh& mesh, const fs::path& field, SnappyRun& r) {
+  const int p = mesh.FindPatch("hull");
+  if (p < 0 || r.layers <= 0) return;
+  const Patch& patch = mesh.patches()[p];
+  const std::vector<double> layers = ReadSnappyFaceLayers(field, "hull", patch.size);
+  if (layers.empty()) return;
+  double area = 0, weighted = 0, bare = 0;
+  for (int i = 0; i < patch.size; ++i) {
+    const double a = mesh.face_area_magnitudes()[patch.start + i];
+    area += a;
+    weighted += a * std::min(layers[i], static_cast<double>(r.layers));
+    if (layers[i] < 0.5) bare += a;
+  }
+  r.layers_area_percent = 100.0 * weighted / (area * r.layers);
+  r.area_without_layers_percent = 100.0 * bare / area;
+}
+
+}  // namespace
 
 Mesh RunSnappy(const TriangleSurface& hull, const SnappyOptions& o, const fs::path& case_dir,
                SnappyRun* run) {
@@ -416,8 +484,10 @@ Mesh RunSnappy(const TriangleSurface& hull, const SnappyOptions& o, const fs::pa
   r.wake_cell = length / o.base_cells_per_length / std::pow(2.0, r.wake_level);
   ReadSnappyLayerTable(case_dir / "log.snappyHexMesh", "hull", &r.layers_kept,
                        &r.thickness_kept_percent);
+  Mesh mesh = ReadPolyMesh(case_dir / "constant" / "polyMesh");
+  SummarizeFaceLayers(mesh, case_dir / "0" / "nSurfaceLayers", r);
   if (run) *run = r;
-  return ReadPolyMesh(case_dir / "constant" / "polyMesh");
+  return mesh;
 }
 
 }  // namespace kelvin::cfd

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "cfd/geometry/triangle_surface.h"
 #include "cfd/mesh/mesh.h"
@@ -84,6 +85,12 @@ struct SnappyRun {
   // kept share of the requested layer thickness (%).
   double layers_kept = -1;
   double thickness_kept_percent = -1;
+  // From snappyHexMesh's per-face layer counts (0/nSurfaceLayers; negative
+  // when it wrote none): the hull-area-weighted mean count kept, as a share
+  // of the requested count (%), and the share of the hull area with no
+  // layer at all (%), where the first cell is a snapped background cell.
+  double layers_area_percent = -1;
+  double area_without_layers_percent = -1;
 };
 
 // The number of layers WriteSnappyCase requests for `options` and a hull of
@@ -112,6 +119,13 @@ double SnappyFirstLayer(const SnappyOptions& options, double length);
 // share of the layer thickness in %. Returns false if the log has no table.
 bool ReadSnappyLayerTable(const std::filesystem::path& log, const std::string& patch,
                           double* layers, double* thickness_percent);
+
+// Reads the per-face layer counts of `patch` from the nSurfaceLayers field
+// snappyHexMesh writes with writeFlags (layerFields) (uniform or
+// nonuniform List<scalar>). Returns an empty vector when the file is
+// missing; throws DataFileError naming the file when it is malformed.
+std::vector<double> ReadSnappyFaceLayers(const std::filesystem::path& field, const std::string& patch,
+                                         int faces);
 
 // Writes the case into `case_dir` (created; an existing polyMesh there is
 // replaced): constant/triSurface/hull.stl and the system dictionaries. The

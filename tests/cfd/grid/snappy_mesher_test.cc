@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "cfd/geometry/hydrostatics.h"
 #include "cfd/grid/hull_grid.h"
@@ -104,6 +105,35 @@ TEST(SnappyMesherTest, ReadsTheLayersSnappyKept) {
   EXPECT_DOUBLE_EQ(percent, 86.6);
   EXPECT_FALSE(ReadSnappyLayerTable(dir / "log.snappyHexMesh", "rudder", &layers, &percent));
   EXPECT_FALSE(ReadSnappyLayerTable(dir / "missing.log", "hull", &layers, &percent));
+}
+
+// The per-face counts of 0/nSurfaceLayers (writeFlags (layerFields)), in
+// the layout snappyHexMesh 1912 writes them; a patch whose name is the tail
+// of another's (hull, skeg_hull) is found by its whole name.
+TEST(SnappyMesherTest, ReadsTheLayersOfEachHullFace) {
+  ScopedTempDir dir;
+  std::ofstream(dir / "nSurfaceLayers")
+      << "FoamFile\n{\n    class       volScalarField;\n    object      nSurfaceLayers;\n}\n"
+         "dimensions      [0 0 0 0 0 0 0];\ninternalField   uniform 0;\nboundaryField\n{\n"
+         "    skeg_hull\n    {\n        type            fixedValue;\n        value           uniform 2;\n    }\n"
+         "    hull\n    {\n        type            fixedValue;\n"
+         "        value           nonuniform List<scalar> \n4\n(\n7\n7\n3\n0\n)\n;\n    }\n}\n";
+  EXPECT_EQ(ReadSnappyFaceLayers(dir / "nSurfaceLayers", "hull", 4), (std::vector<double>{7, 7, 3, 0}));
+  EXPECT_EQ(ReadSnappyFaceLayers(dir / "nSurfaceLayers", "skeg_hull", 3), (std::vector<double>{2, 2, 2}));
+  EXPECT_TRUE(ReadSnappyFaceLayers(dir / "missing", "hull", 4).empty());
+  try {
+    ReadSnappyFaceLayers(dir / "nSurfaceLayers", "hull", 5);
+    FAIL() << "no error";
+  } catch (const DataFileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("nSurfaceLayers: 4 values, expected one per face"));
+    EXPECT_THAT(e.what(), HasSubstr("patch 'hull', 5 faces"));
+  }
+  try {
+    ReadSnappyFaceLayers(dir / "nSurfaceLayers", "rudder", 5);
+    FAIL() << "no error";
+  } catch (const DataFileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("no entry for the patch"));
+  }
 }
 
 TEST(SnappyMesherTest, MissingOpenFoamIsOneClearError) {
@@ -240,6 +270,13 @@ TEST(SnappyMesherTest, DtcGridQualityReport) {
   EXPECT_GT(g.snappy.layers_kept, 0.0);
   EXPECT_LE(g.snappy.layers_kept, g.snappy.layers);
   EXPECT_THAT(g.report, HasSubstr("layers kept by snappyHexMesh"));
+  // And the per-face counts, weighted by area: a share of the request no
+  // larger than the share of the area that has layers at all.
+  EXPECT_GT(g.snappy.layers_area_percent, 0.0);
+  EXPECT_LE(g.snappy.layers_area_percent, 100.0);
+  EXPECT_GE(g.snappy.area_without_layers_percent, 0.0);
+  EXPECT_LE(g.snappy.layers_area_percent, 100.0 - g.snappy.area_without_layers_percent + 1e-9);
+  EXPECT_THAT(g.report, HasSubstr("layers kept over the hull area"));
 }
 
 }  // namespace
