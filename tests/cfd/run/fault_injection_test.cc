@@ -13,69 +13,28 @@
 //   successor beside it) stops the run with one error that names the file,
 //   the cause and the checkpoint kept, which still opens at its step.
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <fcntl.h>
 
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
-#include <optional>
 #include <random>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "data/schema/h5_file.h"
+#include "tests/test_utilities/fault_injection.h"
 #include "tests/test_utilities/test_utilities.h"
-
-extern char** environ;
 
 namespace kelvin::cfd {
 namespace {
 
 namespace fs = std::filesystem;
-
-class Process {
- public:
-  explicit Process(const std::vector<std::string>& argv, const fs::path& log) {
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    EXPECT_EQ(posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  // Exit status, or -signal; nullopt while running.
-  std::optional<int> Poll() {
-    int status = 0;
-    if (waitpid(pid_, &status, WNOHANG) != pid_) return std::nullopt;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-  }
-  int Wait() {
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-  }
-  void Signal(int signal) const { kill(pid_, signal); }
-
- private:
-  pid_t pid_ = -1;
-};
-
-bool WriteInProgress(const fs::path& dir) {
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec)) {
-    if (e.path().filename().string().rfind("checkpoint.h5.tmp.", 0) == 0) return true;
-  }
-  return false;
-}
+using kelvin::testing::AfterSeconds;
+using kelvin::testing::AtFileEvent;
+using kelvin::testing::KillPoint;
+using kelvin::testing::Process;
 
 // The solver state of a checkpoint: every array and the step.
 std::vector<std::vector<double>> State(const fs::path& checkpoint) {
@@ -132,41 +91,32 @@ TEST_F(FaultInjection, KilledRunsRestartToTheStateOfAnUninterruptedRun) {
   fs::create_directories(out);
   std::mt19937 rng(20261201);
   std::uniform_real_distribution<double> delay(0.3, 1.5);
-  int kills = 0, during_write = 0, status = -1;
-  for (int attempt = 0; attempt < 60; ++attempt) {
-    const bool restart = fs::exists(out / "checkpoint.h5");
-    Process p(Args(out, restart), tmp_ / "killed.log");
-    const bool at_write = kills < 12 && kills % 3 == 2;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(delay(rng));
-    std::optional<int> done;
-    while (!(done = p.Poll())) {
-      if (kills < 12 && (at_write ? WriteInProgress(out) : std::chrono::steady_clock::now() >= deadline)) {
-        p.Signal(SIGKILL);
-        p.Wait();
-        ++kills;
-        if (at_write) ++during_write;
-        break;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(at_write ? 1 : 10));
-    }
-    if (done && kills >= 12) {
-      status = *done;
-      break;
-    }
-    if (done) {
-      // Finished before all the kills (a write too quick to catch): start over.
-      fs::remove_all(out);
-      fs::create_directories(out);
-      continue;
-    }
+  int during_write = 0;
+  kelvin::testing::KillSchedule schedule;
+  schedule.command = [&] { return Args(out, fs::exists(out / "checkpoint.h5")); };
+  schedule.log = tmp_ / "killed.log";
+  schedule.point = [&](int k) -> std::unique_ptr<KillPoint> {
+    if (k >= 12) return nullptr;
+    if (k % 3 == 2) return std::make_unique<AtFileEvent>(std::vector{out}, IN_CREATE, "checkpoint.h5.tmp.");
+    return std::make_unique<AfterSeconds>(delay(rng));
+  };
+  schedule.after_kill = [&](int k, pid_t pid) {
+    if (kelvin::testing::HasTemporaryFile(out, "checkpoint.h5", pid)) ++during_write;
     // Whatever carries a final name is whole.
     if (fs::exists(out / "checkpoint.h5")) {
-      EXPECT_NO_THROW(State(out / "checkpoint.h5")) << "after kill " << kills;
+      EXPECT_NO_THROW(State(out / "checkpoint.h5")) << "after kill " << k + 1;
     }
     if (fs::exists(out / "history.h5")) {
-      EXPECT_NO_THROW(data::H5Reader(out / "history.h5").Read("time")) << "after kill " << kills;
+      EXPECT_NO_THROW(data::H5Reader(out / "history.h5").Read("time")) << "after kill " << k + 1;
     }
-  }
+  };
+  // Finished before all the kills (a write too quick to catch): start over.
+  schedule.start_over = [&] {
+    fs::remove_all(out);
+    fs::create_directories(out);
+  };
+  const kelvin::testing::KillOutcome outcome = kelvin::testing::RunWithKills(schedule);
+  const int kills = outcome.kills, status = outcome.status;
   std::printf("fault injection: %d SIGKILLs (%d during a checkpoint write), then the run completed with status %d\n",
               kills, during_write, status);
   ASSERT_EQ(status, 0) << kelvin::testing::ReadText(tmp_ / "killed.log");
@@ -208,7 +158,7 @@ TEST_F(FaultInjection, AFullDiskIsOneClearErrorAndKeepsTheLastCheckpoint) {
   const std::string log = kelvin::testing::ReadText(tmp_ / "full.log");
   const auto kept = fs::exists(out / "checkpoint.h5") ? State(out / "checkpoint.h5") : decltype(State({})){};
   std::error_code ec;
-  const bool leftovers = WriteInProgress(out);
+  const bool leftovers = kelvin::testing::HasTemporaryFile(out, "checkpoint.h5");
   kelvin::testing::RunCommand("umount " + disk.string());
   EXPECT_EQ(status, 1) << log;
   EXPECT_NE(log.find("No space left on device"), std::string::npos) << log;
