@@ -369,6 +369,14 @@ Resume ReadResume(const Job& job) {
   return r;
 }
 
+// The steady criterion's groups at the steps of `samples`: those the driver
+// measured, since the case's force patches are the sampled hull patches.
+std::vector<SteadyStep> SteadyPast(const std::vector<CaptiveSample>& samples, double arm) {
+  std::vector<SteadyStep> past;
+  for (const CaptiveSample& s : samples) past.push_back({s.time, {ShipLoadGroup(s.loads.Total(), arm)}});
+  return past;
+}
+
 // Runs (or resumes) one job through the run driver; false when the step
 // budget ran out first.
 bool ExecuteJob(Context& ctx, Job& job) {
@@ -385,13 +393,17 @@ bool ExecuteJob(Context& ctx, Job& job) {
   const PrimeScales scales{c.settings.rho, ctx.ship.Lpp,
                            ctx.file.cfd.draft > 0 ? ctx.file.cfd.draft : ctx.ship.d,
                            job.cfd_motion.speed};
-  CaptiveSampler sampler(c, HullPatches(ctx, c), scales);
+  // The steady criterion measures the loads the run samples, so that a
+  // resumed run can give it those of the steps before its checkpoint.
+  c.force_patches = HullPatches(ctx, c);
+  CaptiveSampler sampler(c, c.force_patches, scales);
   Resume resume = ReadResume(job);
   resume.cost.cells = c.mesh->n_cells();
+  RunDriverOptions o;
+  if (resume.restart && job.settle) o.steady_past = SteadyPast(resume.samples, job.settle->ship_load_arm);
   sampler.Restore(std::move(resume.samples));
   JobFiles files(ctx, job, sampler, resume.cost);
   Monitor* monitors[] = {&sampler, &files};
-  RunDriverOptions o;
   o.restart = resume.restart ? checkpoint : fs::path();
   o.checkpoint = checkpoint;
   o.checkpoint_interval = ctx.file.cfd.checkpoint_interval;
@@ -724,8 +736,10 @@ void WriteCampaignFile(const data::CampaignFile& f, const data::CaptiveShip& shi
     all.push_back(ReadSamples(j.dir / "result.h5", RigidMotion(j.cfd_motion)));
     campaign.runs.push_back(CaptiveRunOf(j, all.back()));
   }
-  data::WriteCampaignH5(campaign, output);
-  data::H5Writer w(output, data::H5Writer::Mode::kAppend);
+  // One writer and one Commit(): a kill between two commits would leave the
+  // file under its name without the attributes and channels below.
+  data::H5Writer w(output);
+  data::WriteCampaignH5(campaign, w);
   w.SetAttribute("/", "solver", "cfd");
   w.SetAttribute("/", "case", f.cfd.case_file.string());
   w.SetAttribute("/", "prime_draft", f.cfd.draft > 0 ? f.cfd.draft : ship.d);

@@ -10,9 +10,10 @@
 //   checkpoint.h5  the solver state at that step (cfd/io/checkpoint.h)
 //   result.h5      the finished run (its presence marks the run done)
 //   progress.txt   "<step> <steps> <wall seconds>" for the progress table
-// A killed campaign resumes each run from its last checkpoint and skips the
-// finished ones; the result equals that of an uninterrupted campaign bit for
-// bit. With jobs > 1 the runs execute as separate `kelvin captive --run`
+// A killed campaign resumes each run from its last checkpoint (a settling
+// run gives the steady criterion the loads of the steps before it, from its
+// samples) and skips the finished ones; the result equals that of an
+// uninterrupted campaign bit for bit. With jobs > 1 the runs execute as separate `kelvin captive --run`
 // processes, at most `jobs` at a time, and the parent prints the table.
 #pragma once
 

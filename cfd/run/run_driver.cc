@@ -63,7 +63,7 @@ struct CoreColumns {
   }
 };
 
-// X, Y and N / L in ship axes about the motion's centre, scaled by |(X, Y)|.
+// The ship_loads group of the output.forces patches about the motion's centre.
 SteadyGroup ShipLoadGroup(const Case& c, const StepForces& forces, double time) {
   std::vector<const PatchFaceForces*> faces;
   for (int k : c.force_patches) faces.push_back(&forces.Faces(k));
@@ -71,7 +71,7 @@ SteadyGroup ShipLoadGroup(const Case& c, const StepForces& forces, double time) 
   const PlanarLoad l = SumHullLoads(*c.mesh, c.force_patches, faces, body.At(time), body.centre()).Total();
   const double arm = c.settings.time.steady->ship_load_arm > 0.0 ? c.settings.time.steady->ship_load_arm
                                                                  : c.settings.reference.length;
-  return {{l.X, l.Y, l.N / arm}, std::hypot(l.X, l.Y)};
+  return ShipLoadGroup(l, arm);
 }
 
 // The groups of the steady criterion at this step.
@@ -185,6 +185,7 @@ void Loop::Start() {
     ReadCheckpoint(options_.restart, solver_);
   }
   time_control_.Start(solver_, restarted, scalars, c_.settings.reference.velocity());
+  if (restarted && !options_.steady_past.empty()) time_control_.ResumePhase(options_.steady_past);
   const RunStart start{restarted, scalars};
   for (Monitor* m : monitors_) m->Start(solver_, history_, start);
   solver_.SetOuterIterationHook([this](int outer) {
@@ -356,6 +357,10 @@ CourantOnset CourantGrowthOnset(std::span<const double> courant) {
   o.grew = courant.back() > 2.0 * o.median;
   while (o.grew && o.step > 0 && courant[o.step - 1] > 2.0 * o.median) --o.step;
   return o;
+}
+
+SteadyGroup ShipLoadGroup(const PlanarLoad& load, double arm) {
+  return {{load.X, load.Y, load.N / arm}, std::hypot(load.X, load.Y)};
 }
 
 RunDriverSummary RunDriver(Case& c, std::span<Monitor* const> monitors, const RunDriverOptions& options) {

@@ -37,6 +37,11 @@ struct RunDriverOptions {
   std::function<int()> stop_requested;
   bool progress = true;
   std::string label = "kelvin run";
+  // On a restart: the steady criterion's groups at every step before it,
+  // oldest first (a captive run rebuilds them from its samples), so that the
+  // run settles at the step the uninterrupted run would have. Empty: the
+  // criterion starts again at the restart (TimeControl::ResumePhase).
+  std::vector<SteadyStep> steady_past;
 };
 
 struct RunDriverSummary {
@@ -54,6 +59,10 @@ struct RunDriverSummary {
 };
 
 RunDriverSummary RunDriver(Case& c, std::span<Monitor* const> monitors, const RunDriverOptions& options);
+
+// The ship_loads group of the steady criterion: X, Y and N / arm of the hull
+// loads in ship axes, scaled by |(X, Y)|.
+SteadyGroup ShipLoadGroup(const PlanarLoad& load, double arm);
 
 // Where a diverging run began to blow up, from its per-step largest Courant
 // numbers (oldest first): the first of the last run of steps above twice the

@@ -22,7 +22,8 @@
 //
 // The ramp counts steps of the present phase: the run, then the released
 // free surface. Phases, the lid release time and the criterion restart from
-// the restart time on a restart (the checkpoint keeps the release time).
+// the restart time on a restart (the checkpoint keeps the release time),
+// unless the caller gives the steps before it (ResumePhase).
 #pragma once
 
 #include <map>
@@ -73,6 +74,12 @@ struct SteadyStatus {
   double release_time = 0.0;  // NaN: not released (or never held)
 };
 
+// The steady criterion's input at one step (without eta).
+struct SteadyStep {
+  double time = 0.0;  // s
+  std::vector<SteadyGroup> groups;
+};
+
 class TimeControl {
  public:
   // free_surface: the case's linearized free surface (null: none).
@@ -83,6 +90,12 @@ class TimeControl {
   // of the checkpoint restarted from.
   void Start(PimpleSolver& solver, bool restarted, const std::map<std::string, double>& scalars,
              const Vector3& initial_velocity);
+  // After Start on a restart: the run's one phase (from time 0, no rigid
+  // lid) goes on with `past`, every step of it before the restart, oldest
+  // first. The criterion, min_windows and the ramp then see what they would
+  // have seen without the restart (a captive run keeps its loads in its
+  // samples; the checkpoint holds no window).
+  void ResumePhase(std::span<const SteadyStep> past);
   double NextTimeStep() const;
   // Steps left to time.end at the nominal dt.
   int StepsToEnd(double time) const;

@@ -90,6 +90,11 @@ double ParseNumber(const std::string& text, const std::string& where) {
 
 void WriteCampaignH5(const CaptiveCampaign& campaign, const fs::path& path) {
   H5Writer w(path);
+  WriteCampaignH5(campaign, w);
+  w.Commit();
+}
+
+void WriteCampaignH5(const CaptiveCampaign& campaign, H5Writer& w) {
   w.SetAttribute("/", "schema", kCaptiveSchema);
   w.SetAttribute("/", "description", campaign.description);
   w.SetAttribute("/ship", "name", campaign.ship.name);
@@ -115,7 +120,6 @@ void WriteCampaignH5(const CaptiveCampaign& campaign, const fs::path& path) {
       w.Append(name, run.force[c]);
     }
   }
-  w.Commit();
 }
 
 CaptiveCampaign ReadCampaignH5(const fs::path& path) {

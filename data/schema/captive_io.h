@@ -12,8 +12,14 @@ namespace kelvin::data {
 
 inline constexpr std::string_view kCaptiveSchema = "kelvin.captive/1";
 
+class H5Writer;
+
 // Writes the campaign atomically (temporary file + rename).
 void WriteCampaignH5(const CaptiveCampaign& campaign, const std::filesystem::path& path);
+// Writes the campaign into `w` and leaves the Commit() to the caller, who
+// adds its own attributes and datasets first: the file then appears under
+// its name with all of them at once.
+void WriteCampaignH5(const CaptiveCampaign& campaign, H5Writer& w);
 
 // Reads and validates (ValidateCampaign) a campaign. Throws
 // kelvin::DataFileError naming the file, the run and the channel for a

@@ -23,6 +23,7 @@
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "identification/joint_fit.h"
+#include "tests/identification/block2d_campaign.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
@@ -32,27 +33,9 @@ namespace fs = std::filesystem;
 using kelvin::testing::ScopedTempDir;
 using ::testing::HasSubstr;
 
-fs::path DataDir() { return kelvin::testing::SourceDir() / "data/cases/captive_cfd"; }
-
+using kelvin::testing::CaptiveCfdDataDir;
 using kelvin::testing::ReadText;
-
-// The coarse block campaign with its run directories in `dir`.
-fs::path WriteCampaign(const fs::path& dir, const std::string& extra_tests = "") {
-  std::string text = ReadText(DataDir() / "block2d_campaign.yaml");
-  auto replace = [&](const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  };
-  replace("ship: block2d_ship.yaml", "ship: " + (DataDir() / "block2d_ship.yaml").string());
-  replace("case: block2d_case.yaml", "case: " + (DataDir() / "block2d_case.yaml").string());
-  replace("directory: ../results/block2d_cfd", "directory: " + (dir / "runs").string());
-  if (!extra_tests.empty()) replace("  omega_prime:", extra_tests + "  omega_prime:");
-  fs::create_directories(dir);
-  const fs::path path = dir / "campaign.yaml";
-  std::ofstream(path) << text;
-  return path;
-}
+using kelvin::testing::WriteBlock2dCampaign;
 
 CampaignRunOptions Quiet() {
   CampaignRunOptions o;
@@ -68,6 +51,9 @@ void ExpectSameFile(const fs::path& a, const fs::path& b) {
     const std::string& name = ca.runs[r].name;
     EXPECT_EQ(name, cb.runs[r].name);
     EXPECT_EQ(ca.runs[r].time, cb.runs[r].time) << name;  // bit for bit
+    EXPECT_EQ(ca.runs[r].settled, cb.runs[r].settled) << name;
+    EXPECT_EQ(ca.runs[r].t_settle, cb.runs[r].t_settle) << name;
+    EXPECT_EQ(ca.runs[r].settle_change, cb.runs[r].settle_change) << name;
     for (int c = 0; c < 3; ++c)
       EXPECT_EQ(ca.runs[r].force[c], cb.runs[r].force[c]) << name << " channel " << c;
     for (const char* extra : {"X_pressure", "N_viscous", "Y_prime"}) {
@@ -80,7 +66,7 @@ void ExpectSameFile(const fs::path& a, const fs::path& b) {
 TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
   ScopedTempDir tmp;
   // Uninterrupted.
-  const data::CampaignFile whole = data::LoadCampaignFile(WriteCampaign(tmp / "whole"));
+  const data::CampaignFile whole = data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "whole"));
   const CampaignRunSummary a = RunCfdCampaign(whole, Quiet());
   ASSERT_TRUE(a.complete);
   EXPECT_EQ(a.steps_computed, 3 * 50 + 2 * 120);
@@ -88,7 +74,7 @@ TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
   // Stopped after 75 steps (inside the second run, 5 steps after its last
   // checkpoint), then after 203 more (inside the sway run, 3 steps after its
   // last checkpoint), then resumed.
-  const data::CampaignFile killed = data::LoadCampaignFile(WriteCampaign(tmp / "killed"));
+  const data::CampaignFile killed = data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "killed"));
   CampaignRunOptions o = Quiet();
   o.stop_after_steps = 75;
   const CampaignRunSummary b1 = RunCfdCampaign(killed, o);
@@ -121,12 +107,39 @@ TEST(CfdCampaign, KilledCampaignResumesToTheSameResult) {
   ExpectSameFile(a.output, b3.output);
 }
 
+// Static drift runs that settle (2% over 1 s: at steps 46, 43 and 43 of 50),
+// stopped after 35 steps (inside the first, 5 steps after its checkpoint of
+// step 30) and resumed, settle at the same steps: the steady criterion is
+// given the loads of the steps before the checkpoint. (Without them it
+// filled its window and waited for its min_windows again from the restart,
+// and the first run settled at step 50.)
+TEST(CfdCampaign, AResumedRunSettlesAtTheStepOfAnUninterruptedOne) {
+  ScopedTempDir tmp;
+  const std::string settle = "  settle: {tolerance: 0.02, window: 1.0}\n";
+  const CampaignRunSummary a =
+      RunCfdCampaign(data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "whole", "", settle)), Quiet());
+  ASSERT_TRUE(a.complete);
+  const data::CampaignFile killed = data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "killed", "", settle));
+  CampaignRunOptions o = Quiet();
+  o.stop_after_steps = 35;
+  ASSERT_FALSE(RunCfdCampaign(killed, o).complete);
+  const CampaignRunSummary b = RunCfdCampaign(killed, Quiet());
+  ASSERT_TRUE(b.complete);
+  const data::CaptiveCampaign ca = data::ReadCampaignH5(a.output);
+  for (const data::CaptiveRun& run : ca.runs) {
+    if (data::IsHarmonic(run.motion.kind)) continue;
+    EXPECT_EQ(run.settled, 1) << run.name;
+    EXPECT_LT(run.time.size(), 50u) << run.name << " did not end early";
+  }
+  ExpectSameFile(a.output, b.output);
+}
+
 // A run that diverges (pure sway at v' = 1e6: the Courant number runs away)
 // fails alone: the campaign finishes the others, keeps their results and
 // names the failed run with the driver's divergence message.
 TEST(CfdCampaign, ADivergingRunFailsAloneAndIsNamed) {
   kelvin::testing::ScopedTempDir tmp;
-  std::string text = ReadText(WriteCampaign(tmp / "c"));
+  std::string text = ReadText(WriteBlock2dCampaign(tmp / "c"));
   text.replace(text.find("pure_sway_v_prime: [0.15]"), 25, "pure_sway_v_prime: [0.15, 1.0e6]");
   std::ofstream(tmp / "c/campaign.yaml") << text;
   try {
@@ -146,9 +159,9 @@ TEST(CfdCampaign, ADivergingRunFailsAloneAndIsNamed) {
 TEST(CfdCampaign, SurvivesSigkill) {
   ScopedTempDir tmp;
   const CampaignRunSummary a =
-      RunCfdCampaign(data::LoadCampaignFile(WriteCampaign(tmp / "whole")), Quiet());
+      RunCfdCampaign(data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "whole")), Quiet());
   ASSERT_TRUE(a.complete);
-  const fs::path p = WriteCampaign(tmp / "killed");
+  const fs::path p = WriteBlock2dCampaign(tmp / "killed");
   const std::string kelvin = (kelvin::testing::ToolsDir() / "kelvin").string();
   // SIGKILL after 1.5 s: mid-campaign on this machine (the whole takes about
   // 3 s); whenever it lands, the rerun must end with the same file.
@@ -163,10 +176,10 @@ TEST(CfdCampaign, SurvivesSigkill) {
 
 TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
   ScopedTempDir tmp;
-  const data::CampaignFile serial = data::LoadCampaignFile(WriteCampaign(tmp / "serial"));
+  const data::CampaignFile serial = data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "serial"));
   const CampaignRunSummary a = RunCfdCampaign(serial, Quiet());
   ASSERT_TRUE(a.complete);
-  const fs::path parallel = WriteCampaign(tmp / "parallel");
+  const fs::path parallel = WriteBlock2dCampaign(tmp / "parallel");
   const auto r = kelvin::testing::RunCommand((kelvin::testing::ToolsDir() / "kelvin").string() +
                                              " captive " + parallel.string() + " --jobs 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -177,7 +190,7 @@ TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
 
 TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
   ScopedTempDir tmp;
-  const data::CampaignFile f = data::LoadCampaignFile(WriteCampaign(
+  const data::CampaignFile f = data::LoadCampaignFile(WriteBlock2dCampaign(
       tmp / "c", "  yaw_drift_deg: [5]\n  circular: [{drift_deg: 0, r_prime: 0.3}]\n"));
   const CampaignRunSummary s = RunCfdCampaign(f, Quiet());
   ASSERT_TRUE(s.complete);
@@ -225,7 +238,7 @@ TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {
 TEST(CfdCampaign, StaticDriftRunsEndOnTheSteadyCriterion) {
   ScopedTempDir tmp;
   auto campaign = [&](const std::string& dir, const std::string& settle) {
-    std::string text = ReadText(WriteCampaign(tmp / dir));
+    std::string text = ReadText(WriteBlock2dCampaign(tmp / dir));
     const std::string from = "  steady_duration: 4.0\n";
     text.replace(text.find(from), from.size(), "  steady_duration: 14.0\n  settle: " + settle + "\n");
     const fs::path path = tmp / dir / "campaign.yaml";
@@ -286,7 +299,7 @@ TEST(CfdCampaign, StaticDriftRunsEndOnTheSteadyCriterion) {
 // ramp period on the pose is the textbook law at full amplitude.
 TEST(CfdCampaign, MotionRampsOverFewerPeriodsThanTheAnalysisDiscards) {
   ScopedTempDir tmp;
-  std::string text = ReadText(WriteCampaign(tmp / "c"));
+  std::string text = ReadText(WriteBlock2dCampaign(tmp / "c"));
   auto replace = [&](const std::string& from, const std::string& to) {
     const auto at = text.find(from);
     ASSERT_NE(at, std::string::npos) << from;
@@ -324,7 +337,7 @@ TEST(CfdCampaign, MotionRampsOverFewerPeriodsThanTheAnalysisDiscards) {
 
 TEST(CfdCampaign, ARunInAnotherProcessIsNotComputedTwice) {
   ScopedTempDir tmp;
-  const data::CampaignFile f = data::LoadCampaignFile(WriteCampaign(tmp / "c"));
+  const data::CampaignFile f = data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "c"));
   fs::create_directories(tmp / "c/runs/drift_+0.0deg");
   const std::string lock = (tmp / "c/runs/drift_+0.0deg/lock").string();
   const int fd = ::open(lock.c_str(), O_CREAT | O_RDWR, 0644);
@@ -342,7 +355,7 @@ TEST(CfdCampaign, ARunInAnotherProcessIsNotComputedTwice) {
 TEST(CfdCampaign, BadCfdSectionIsOneClearError) {
   ScopedTempDir tmp;
   {
-    const fs::path p = WriteCampaign(tmp / "a");
+    const fs::path p = WriteBlock2dCampaign(tmp / "a");
     std::string text = ReadText(p);
     text.replace(text.find("hull_patches: [obstacle]"), 24, "hull_patches: [hull]");
     std::ofstream(p) << text;
@@ -387,7 +400,7 @@ namespace {
 // motion give identical loads, step for step and bit for bit.
 TEST(CfdCampaign, AJobAndAKelvinRunOfTheSameCaseAgree) {
   ScopedTempDir tmp;
-  std::string tests = ReadText(WriteCampaign(tmp / "c"));
+  std::string tests = ReadText(WriteBlock2dCampaign(tmp / "c"));
   tests.replace(tests.find("static_drift_deg: [0, 5, -5]"), 28, "static_drift_deg: [0]");
   std::ofstream(tmp / "c" / "campaign.yaml") << tests;
   const data::CampaignFile f = data::LoadCampaignFile(tmp / "c" / "campaign.yaml");
@@ -398,7 +411,7 @@ TEST(CfdCampaign, AJobAndAKelvinRunOfTheSameCaseAgree) {
       [](const data::CaptiveRun& r) { return r.motion.kind == data::MotionKind::kStaticDrift; });
   ASSERT_NE(drift, campaign.runs.end());
 
-  std::string text = ReadText(DataDir() / "block2d_case.yaml");
+  std::string text = ReadText(CaptiveCfdDataDir() / "block2d_case.yaml");
   text.replace(text.find("time: {dt: 0.1}"), 15,
                "motion: {kind: static_drift, speed: 1.0, ramp_time: 1.0, centre: [0, 0, 0]}\n"
                "reference: {speed: 1.0, direction: [-1, 0, 0], length: 1.0, draft: 1.0}\n"
