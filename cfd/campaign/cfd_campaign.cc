@@ -388,6 +388,7 @@ bool ExecuteJob(Context& ctx, Job& job) {
   overrides.steady = job.settle;
   fs::create_directories(job.dir);
   const RunLock lock(job);
+  data::RemoveStaleTemporaries(job.dir);  // what a killed earlier attempt left half-written
   const fs::path checkpoint = job.dir / "checkpoint.h5";
   Case c = LoadCaseFile(ctx.file.cfd.case_file, overrides);
   const PrimeScales scales{c.settings.rho, ctx.ship.Lpp,
@@ -737,7 +738,9 @@ void WriteCampaignFile(const data::CampaignFile& f, const data::CaptiveShip& shi
     campaign.runs.push_back(CaptiveRunOf(j, all.back()));
   }
   // One writer and one Commit(): a kill between two commits would leave the
-  // file under its name without the attributes and channels below.
+  // file under its name without the attributes and channels below. A kill
+  // during an earlier attempt's write left its temporary beside it.
+  data::RemoveStaleTemporaries(output.has_parent_path() ? output.parent_path() : fs::path("."));
   data::H5Writer w(output);
   data::WriteCampaignH5(campaign, w);
   w.SetAttribute("/", "solver", "cfd");

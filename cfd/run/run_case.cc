@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "data/schema/atomic_file.h"
 #include "cfd/run/captive_sampler.h"
 #include "cfd/run/free_running.h"
 #include "cfd/run/resistance_monitor.h"
@@ -50,6 +51,10 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   Case c = LoadCaseFile(case_file, overrides);
   spdlog::info("mesh quality:\n{}", c.mesh->Quality().Report());
   fs::create_directories(c.settings.output.directory);
+  // What a killed earlier run left half-written beside its files.
+  if (const int n = data::RemoveStaleTemporaries(c.settings.output.directory)) {
+    spdlog::info("removed {} temporary file(s) a stopped run left in {}", n, c.settings.output.directory.string());
+  }
   std::vector<std::unique_ptr<Monitor>> owned = MakeMonitors(c);
   std::vector<Monitor*> monitors;
   for (auto& m : owned) monitors.push_back(m.get());

@@ -293,6 +293,8 @@ TEST(CaptiveFaultInjection, AKilledCampaignCompletesWithTheResultsOfAnUninterrup
   }
   std::printf("  %d temporary files left behind\n", CountTemporaryFiles(runs));
   ASSERT_EQ(outcome.status, 0) << kt::ReadText(tmp / "killed.log");
+  // Each restart removed what the kill before it left half-written.
+  EXPECT_EQ(CountTemporaryFiles(runs), 0);
   EXPECT_GE(outcome.kills, 13);
   EXPECT_GE(writes, 4) << "too few kills came during a write";
 

@@ -122,6 +122,10 @@ TEST_F(FaultInjection, KilledRunsRestartToTheStateOfAnUninterruptedRun) {
   ASSERT_EQ(status, 0) << kelvin::testing::ReadText(tmp_ / "killed.log");
   EXPECT_GE(kills, 12);
   EXPECT_GE(during_write, 3);
+  // Each restart removed the temporaries the kill before it left.
+  for (const char* name : {"checkpoint.h5", "history.h5"}) {
+    EXPECT_FALSE(kelvin::testing::HasTemporaryFile(out, name)) << "a temporary " << name << " was left";
+  }
   const auto final_state = State(out / "checkpoint.h5");
   ASSERT_EQ(final_state.size(), reference.size());
   for (std::size_t k = 0; k < reference.size(); ++k) {
