@@ -15,10 +15,11 @@ stress face by face (its x part, summed over twelve bands along the hull).
 The friction line is ITTC-57 at Re = U Lpp / nu.
 
 Usage: tools/bench/wall_friction_same_grid.py --kelvin build/ci/tools/kelvin
-           [--grid build/grids/doublebody_dtc/grid3] [--work /tmp/wall_friction] [--iterations 1500]
-           [--write BENCHMARKS.md] [--reuse]
---reuse keeps finished runs in --work (a run is finished when its final
-output exists). Costs a few CPU minutes on grid 3.
+           [--grid build/grids/doublebody_dtc/grid3 [--grid ...]] [--work /tmp/wall_friction]
+           [--iterations 1500] [--write BENCHMARKS.md] [--reuse]
+Each grid runs in <work>/<grid folder name>; --reuse keeps finished runs there
+(a run is finished when its final output exists). Costs a few CPU minutes on
+grid 3 and about 25 on grid 1 (205k cells).
 """
 import argparse
 import datetime
@@ -115,10 +116,18 @@ relaxationFactors { equations { U 0.9; ".*" 0.9; } fields { p 1; } }"""),
             f.write(text)
 
 
+def finished_openfoam(work):
+    """The wallShearStress of the last time folder of a finished run in `work`, or None."""
+    times = [d for d in os.listdir(work) if d.isdigit() and os.path.exists(os.path.join(work, d, "wallShearStress"))] \
+        if os.path.isdir(work) else []
+    return os.path.join(work, max(times, key=int), "wallShearStress") if times else None
+
+
 def run_openfoam(work, grid, iterations, reuse):
-    final = os.path.join(work, str(iterations), "wallShearStress")
-    if not (reuse and os.path.exists(final)):
+    final = finished_openfoam(work) if reuse else None
+    if final is None:
         write_openfoam_case(work, grid, iterations)
+        final = os.path.join(work, str(iterations), "wallShearStress")
         with open(os.path.join(work, "log.simpleFoam"), "w") as log:
             subprocess.run(["bash", "-c", f"source {BASHRC} >/dev/null 2>&1; cd {work} && simpleFoam"],
                            stdout=log, stderr=subprocess.STDOUT, check=True)
@@ -194,7 +203,7 @@ def run_kelvin(kelvin, work, grid, reuse):
                 areas=np.array(areas), tau_x=-a["wallShearStress"][:, 0])
 
 
-def section(grid, k, of, iterations, reused):
+def section(grid, k, of):
     q = 0.5 * RHO * U * U
     area = k["areas"].sum()
     cf0 = ittc57(U * LPP / NU)
@@ -209,13 +218,7 @@ def section(grid, k, of, iterations, reused):
                      f"{fk / fo:.3f} |")
     ratio = k["tau_x"] / of["tau_x"]
     cells = re.search(r"^cells (\d+)", open(os.path.join(grid, "quality.txt")).read(), re.M).group(1)
-    return f"""## Hull friction on the same grid: kelvin against OpenFOAM's kOmegaSST (issue #25 acceptance 2)
-
-Run by `tools/bench/wall_friction_same_grid.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC (serial, niced,
-2 shared cores). The DTC double body (`data/cases/doublebody/dtc.yaml`, U = {U} m/s, Re = {U * LPP / NU:.3g}) on
-`{os.path.relpath(grid, ROOT)}` ({cells} cells, snappyHexMesh): kelvin `kelvin run` against OpenFOAM v1912 simpleFoam
-with kOmegaSST and the same wall law (nutUSpaldingWallFunction), the same inflow k and omega, {iterations} SIMPLE
-iterations, on the polyMesh kelvin wrote (the same hull faces in the same order).{reused}
+    return f"""### `{os.path.relpath(grid, ROOT)}` ({cells} cells, {of['iterations']} SIMPLE iterations)
 
 | | kelvin | OpenFOAM | kelvin / OpenFOAM |
 | --- | ---: | ---: | ---: |
@@ -233,19 +236,35 @@ iterations. Face by face, kelvin / OpenFOAM wall shear (x): percentiles 5, 25, 5
 """ + "\n".join(bands) + "\n\n"
 
 
+def header(reused):
+    return f"""## Hull friction on the same grid: kelvin against OpenFOAM's kOmegaSST (issue #25 acceptance 2)
+
+Run by `tools/bench/wall_friction_same_grid.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC (serial, niced,
+2 shared cores). The DTC double body (`data/cases/doublebody/dtc.yaml`, U = {U} m/s, Re = {U * LPP / NU:.3g}) on
+kelvin's snappyHexMesh grids: kelvin `kelvin run` against OpenFOAM v1912 simpleFoam with kOmegaSST and the same
+wall law (nutUSpaldingWallFunction), the same inflow k and omega, on the polyMesh kelvin wrote (the same hull faces
+in the same order).{reused}
+
+"""
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--kelvin", required=True)
-    ap.add_argument("--grid", default=os.path.join(ROOT, "build", "grids", "doublebody_dtc", "grid3"))
+    ap.add_argument("--grid", action="append", help="a kelvin grid folder (repeatable; default: DTC grid 3)")
     ap.add_argument("--work", default="/tmp/wall_friction")
     ap.add_argument("--iterations", type=int, default=1500)
     ap.add_argument("--write", default=None)
     ap.add_argument("--reuse", action="store_true")
     args = ap.parse_args()
-    of = run_openfoam(os.path.join(args.work, "openfoam"), args.grid, args.iterations, args.reuse)
-    k = run_kelvin(os.path.abspath(args.kelvin), args.work, args.grid, args.reuse)
-    reused = f" Finished runs in {args.work} were reused (--reuse)." if args.reuse else ""
-    write_or_print(args.write, NAME, section(args.grid, k, of, args.iterations, reused))
+    grids = args.grid or [os.path.join(ROOT, "build", "grids", "doublebody_dtc", "grid3")]
+    text = header(f" Finished runs in {args.work} were reused (--reuse)." if args.reuse else "")
+    for grid in grids:
+        work = os.path.join(args.work, os.path.basename(os.path.normpath(grid)))
+        of = run_openfoam(os.path.join(work, "openfoam"), grid, args.iterations, args.reuse)
+        k = run_kelvin(os.path.abspath(args.kelvin), work, grid, args.reuse)
+        text += section(grid, k, of)
+    write_or_print(args.write, NAME, text)
 
 
 if __name__ == "__main__":
