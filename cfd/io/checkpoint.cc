@@ -42,7 +42,7 @@ std::vector<std::string> SplitNames(const std::string& names) {
 }  // namespace
 
 void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solver,
-                     const CheckpointScalars& scalars) {
+                     const CheckpointScalars& scalars, const CheckpointArrays& arrays) {
   const PimpleSolver::State s = solver.GetState();
   data::H5Writer w(path, data::H5Writer::Mode::kCreate);
   w.SetAttribute("/", "kind", "kelvin PIMPLE checkpoint");
@@ -86,6 +86,16 @@ void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solv
     }
     w.SetAttribute("/", "run_scalars", names);
   }
+  if (!arrays.empty()) {
+    std::string names;
+    for (const auto& [name, values] : arrays) {
+      KELVIN_CHECK(!name.empty() && name.find_first_not_of(kScalarNameChars) == std::string::npos && !values.empty(),
+                   "checkpoint arrays have identifier names and values");
+      names += (names.empty() ? "" : ",") + name;
+      w.WriteArray("run/" + name, values, {values.size()}, "", "run state");
+    }
+    w.SetAttribute("/", "run_arrays", names);
+  }
   w.Commit();
 }
 
@@ -99,6 +109,16 @@ CheckpointScalars RunScalars(const data::H5Reader& r) {
     }
   }
   return scalars;
+}
+
+CheckpointArrays RunArrays(const data::H5Reader& r) {
+  CheckpointArrays arrays;
+  if (r.HasAttribute("/", "run_arrays")) {
+    for (const std::string& name : SplitNames(r.StringAttribute("/", "run_arrays"))) {
+      arrays[name] = r.Read("run/" + name).values;
+    }
+  }
+  return arrays;
 }
 
 }  // namespace
@@ -143,6 +163,11 @@ CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver
 CheckpointScalars ReadCheckpointScalars(const std::filesystem::path& path) {
   const data::H5Reader r(path);
   return RunScalars(r);
+}
+
+CheckpointArrays ReadCheckpointArrays(const std::filesystem::path& path) {
+  const data::H5Reader r(path);
+  return RunArrays(r);
 }
 
 }  // namespace kelvin::cfd

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "cfd/solver/pimple_solver.h"
 
@@ -16,14 +17,20 @@ namespace kelvin::cfd {
 // at which a resistance run released its rigid lid). Names are plain
 // identifiers ([A-Za-z0-9_]).
 using CheckpointScalars = std::map<std::string, double>;
+// Run-level arrays, by name (the same identifiers): e.g. the steady
+// criterion's window, so that a restarted run settles where the
+// uninterrupted one does.
+using CheckpointArrays = std::map<std::string, std::vector<double>>;
 
 void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solver,
-                     const CheckpointScalars& scalars = {});
+                     const CheckpointScalars& scalars = {}, const CheckpointArrays& arrays = {});
 // Restores the state and returns the run scalars (none in checkpoints
 // written without them); a DataFileError if the file does not match the mesh.
 CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver);
 // The run scalars alone (a free body restores its pose before the solver
 // state places the mesh).
 CheckpointScalars ReadCheckpointScalars(const std::filesystem::path& path);
+// The run arrays (none in checkpoints written without them).
+CheckpointArrays ReadCheckpointArrays(const std::filesystem::path& path);
 
 }  // namespace kelvin::cfd

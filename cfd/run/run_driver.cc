@@ -185,6 +185,13 @@ void Loop::Start() {
     ReadCheckpoint(options_.restart, solver_);
   }
   time_control_.Start(solver_, restarted, scalars, c_.settings.reference.velocity());
+  if (restarted) {
+    try {
+      time_control_.RestorePhase(scalars, ReadCheckpointArrays(options_.restart));
+    } catch (const DataFileError& e) {
+      throw DataFileError(fmt::format("{}: {}", options_.restart.string(), e.what()));
+    }
+  }
   if (restarted && !options_.steady_past.empty()) time_control_.ResumePhase(options_.steady_past);
   const RunStart start{restarted, scalars};
   for (Monitor* m : monitors_) m->Start(solver_, history_, start);
@@ -215,7 +222,7 @@ void Loop::Checkpoint() {
   CheckpointScalars scalars = time_control_.CheckpointScalars();
   for (Monitor* m : monitors_) m->AddCheckpointScalars(scalars);
   try {
-    WriteCheckpoint(options_.checkpoint, solver_, scalars);
+    WriteCheckpoint(options_.checkpoint, solver_, scalars, time_control_.CheckpointArrays());
     summary_.last_checkpoint = options_.checkpoint;
     last_checkpoint_step_ = solver_.step();
     WriteHistory();

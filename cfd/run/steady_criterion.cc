@@ -41,15 +41,80 @@ SteadyCriterion::SteadyCriterion(SteadyCriterionOptions options)
   options_.Validate();
 }
 
+// Layout: [samples, then per sample: time, groups, per group: scale,
+// values, the values..., then the eta size and eta...].
+std::vector<double> SteadyCriterion::Save() const {
+  std::vector<double> out{static_cast<double>(samples_.size())};
+  for (const Sample& s : samples_) {
+    out.push_back(s.time);
+    out.push_back(static_cast<double>(s.groups.size()));
+    for (const SteadyGroup& g : s.groups) {
+      out.push_back(g.scale);
+      out.push_back(static_cast<double>(g.values.size()));
+      out.insert(out.end(), g.values.begin(), g.values.end());
+    }
+    out.push_back(static_cast<double>(s.eta.size()));
+    out.insert(out.end(), s.eta.begin(), s.eta.end());
+  }
+  return out;
+}
+
+void SteadyCriterion::Load(std::span<const double> saved) {
+  std::size_t at = 0;
+  auto next = [&]() {
+    if (at >= saved.size()) {
+      throw DataFileError(fmt::format("the steady criterion's window ends early ({} numbers)", saved.size()));
+    }
+    return saved[at++];
+  };
+  auto count = [&]() {
+    const double n = next();
+    if (!(n >= 0.0) || n != std::floor(n) || n > static_cast<double>(saved.size())) {
+      throw DataFileError(fmt::format("the steady criterion's window has a count of {} at position {}", n, at - 1));
+    }
+    return static_cast<std::size_t>(n);
+  };
+  std::deque<Sample> samples(count());
+  for (Sample& s : samples) {
+    s.time = next();
+    s.groups.resize(count());
+    for (SteadyGroup& g : s.groups) {
+      g.scale = next();
+      g.values.resize(count());
+      for (double& v : g.values) v = next();
+    }
+    s.eta.resize(count());
+    for (double& v : s.eta) v = next();
+  }
+  if (at != saved.size()) {
+    throw DataFileError(fmt::format("the steady criterion's window has {} numbers after its end", saved.size() - at));
+  }
+  for (const Sample& s : samples) {
+    bool same = s.groups.size() == samples.front().groups.size() && s.eta.size() == samples.front().eta.size();
+    for (std::size_t g = 0; same && g < s.groups.size(); ++g) {
+      same = s.groups[g].values.size() == samples.front().groups[g].values.size();
+    }
+    if (!same) throw DataFileError("the steady criterion's window holds samples of different sizes");
+  }
+  samples_ = std::move(samples);
+  Update();
+}
+
 void SteadyCriterion::Add(double time, std::span<const SteadyGroup> groups, std::span<const double> eta) {
   KELVIN_CHECK(!groups.empty(), "at least one monitored group");
   samples_.push_back({time, {groups.begin(), groups.end()}, {eta.begin(), eta.end()}});
   // Keep the newest sample that is at least one window old, and all later ones.
   const std::size_t keep = static_cast<std::size_t>(options_.window_steps) + 1;
   while (samples_.size() > keep && samples_[1].time <= time - options_.window) samples_.pop_front();
+  Update();
+}
+
+void SteadyCriterion::Update() {
   force_change_ = eta_change_ = kNaN;
+  if (samples_.empty()) return;
+  const double time = samples_.back().time;
   if (samples_.front().time > time - options_.window * (1.0 - 1e-9)) return;
-  if (samples_.size() < keep) return;
+  if (samples_.size() < static_cast<std::size_t>(options_.window_steps) + 1) return;
   Measure();
 }
 

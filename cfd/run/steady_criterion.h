@@ -43,6 +43,12 @@ class SteadyCriterion {
   // True once a full window exists and both changes are below the tolerance.
   bool Settled() const;
   double force_change() const { return force_change_; }
+  // The window as a flat array, for a checkpoint: a restarted run then
+  // settles at the step the uninterrupted one would have. Load replaces the
+  // window (and the changes measured on it); it throws DataFileError when
+  // the array is not one Save wrote.
+  std::vector<double> Save() const;
+  void Load(std::span<const double> saved);
   double eta_change() const { return eta_change_; }
   const SteadyCriterionOptions& options() const { return options_; }
 
@@ -52,6 +58,7 @@ class SteadyCriterion {
     std::vector<SteadyGroup> groups;
     std::vector<double> eta;
   };
+  void Update();  // the changes over a full window (NaN until there is one)
   void Measure();
 
   SteadyCriterionOptions options_;

@@ -14,6 +14,10 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kReleaseScalar = "rigid_lid_release_time";
 constexpr const char* kOldReleaseScalar = "resistance_release_time";  // checkpoints of the older layout
+constexpr const char* kPhaseStart = "phase_start";
+constexpr const char* kPhaseSteps = "phase_steps";
+constexpr const char* kRigidUntil = "rigid_lid_until";
+constexpr const char* kWindowArray = "steady_window";
 }  // namespace
 
 void SteadyOptions::Validate() const {
@@ -127,8 +131,32 @@ void TimeControl::Record(const PimpleSolver& solver, std::span<const SteadyGroup
 }
 
 std::map<std::string, double> TimeControl::CheckpointScalars() const {
-  if (std::isnan(status_.release_time)) return {};
-  return {{kReleaseScalar, status_.release_time}};
+  std::map<std::string, double> scalars{{kPhaseStart, phase_start_},
+                                        {kPhaseSteps, static_cast<double>(phase_steps_)}};
+  if (status_.rigid_lid) scalars[kRigidUntil] = rigid_until_;
+  if (!std::isnan(status_.release_time)) scalars[kReleaseScalar] = status_.release_time;
+  return scalars;
+}
+
+std::map<std::string, std::vector<double>> TimeControl::CheckpointArrays() const {
+  if (!criterion_) return {};
+  return {{kWindowArray, criterion_->Save()}};
+}
+
+void TimeControl::RestorePhase(const std::map<std::string, double>& scalars,
+                               const std::map<std::string, std::vector<double>>& arrays) {
+  const auto start = scalars.find(kPhaseStart), steps = scalars.find(kPhaseSteps);
+  if (start == scalars.end() || steps == scalars.end()) return;  // an older checkpoint
+  phase_start_ = start->second;
+  phase_steps_ = static_cast<int>(steps->second);
+  if (const auto until = scalars.find(kRigidUntil); until != scalars.end() && status_.rigid_lid) {
+    rigid_until_ = until->second;
+  }
+  if (const auto window = arrays.find(kWindowArray); window != arrays.end() && criterion_) {
+    criterion_->Load(window->second);
+    status_.force_change = criterion_->force_change();
+    status_.eta_change = criterion_->eta_change();
+  }
 }
 
 }  // namespace kelvin::cfd

@@ -21,9 +21,10 @@
 //       min_steps: 0           # nor before this many steps
 //
 // The ramp counts steps of the present phase: the run, then the released
-// free surface. Phases, the lid release time and the criterion restart from
-// the restart time on a restart (the checkpoint keeps the release time),
-// unless the caller gives the steps before it (ResumePhase).
+// free surface. A checkpoint keeps the lid release time and the phase (its
+// start and steps, the lid's end, the criterion's window: RestorePhase), so
+// a restarted run ramps and settles as the uninterrupted one; a caller may
+// instead give the steps before the restart (ResumePhase).
 #pragma once
 
 #include <map>
@@ -90,6 +91,12 @@ class TimeControl {
   // of the checkpoint restarted from.
   void Start(PimpleSolver& solver, bool restarted, const std::map<std::string, double>& scalars,
              const Vector3& initial_velocity);
+  // After Start on a restart: the phase (its start, its steps, the
+  // criterion's window) as the checkpoint kept it (CheckpointArrays), so the
+  // ramp and the criterion go on as if the run had not stopped. Checkpoints
+  // without them leave the phase restarting at the restart time.
+  void RestorePhase(const std::map<std::string, double>& scalars,
+                    const std::map<std::string, std::vector<double>>& arrays);
   // After Start on a restart: the run's one phase (from time 0, no rigid
   // lid) goes on with `past`, every step of it before the restart, oldest
   // first. The criterion, min_windows and the ramp then see what they would
@@ -106,6 +113,7 @@ class TimeControl {
   const TimeControlOptions& options() const { return options_; }
   // Run scalars a checkpoint keeps (the lid release time).
   std::map<std::string, double> CheckpointScalars() const;
+  std::map<std::string, std::vector<double>> CheckpointArrays() const;
 
  private:
   void StartPhase(double time);

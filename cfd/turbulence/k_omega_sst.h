@@ -34,8 +34,9 @@
 // factor kappa u+ (about 7 at y+ 100), so the limiter would cut the wall
 // cell's nu_t by that factor where the log layer has k / omega = kappa u_tau y,
 // starve the face between the wall cell and the next of momentum diffusion
-// and lower U_P and the friction with it (a 4-20% friction deficit on the
-// DTC's wall-function grids, BENCHMARKS.md doublebody_dtc).
+// and lower U_P and the friction with it (docs/formulation.md section 8.2;
+// on the DTC's snappy grid 3, 4% of the hull friction and up to 19% of it
+// locally, BENCHMARKS.md wall_friction_same_grid).
 #pragma once
 
 #include <memory>

@@ -193,6 +193,46 @@ TEST(CaseRunner, SteadyStopAndResistanceCoefficients) {
   EXPECT_NEAR(h.Read("resistance/reference").at(1), 0.1, 1e-12);
 }
 
+// A run on the steady criterion, with a time-step ramp, stopped before it
+// settles and restarted from its checkpoint, settles at the step of the
+// uninterrupted run and ends on the same state bit for bit: the checkpoint
+// keeps the criterion's window and the phase (before, the restart refilled
+// the window, waited out min_steps and ramped dt again).
+TEST(CaseRunner, ARestartedSteadyRunSettlesAtTheStepOfAnUninterruptedOne) {
+  kelvin::testing::ScopedTempDir tmp;
+  auto text = [](double end) {
+    std::string t = CaseText(0.05, end);
+    t.replace(t.find("time: {dt: "), 11,
+              "time: {steady: {quantities: [force], window: 0, window_steps: 10, tolerance: 1.0e-4, min_steps: 20}, "
+              "ramp_steps: 6, dt: ");
+    return t;
+  };
+  RunOptions o;
+  o.progress = false;
+  o.output_override = tmp / "whole";
+  const RunSummary whole = RunCase(WriteCase(tmp.path(), text(50.0)), o);
+  ASSERT_TRUE(whole.steady_converged) << whole.message;
+  ASSERT_GT(whole.steps, 30);
+  // Stop 8 steps before it settles: inside a full window, after the ramp
+  // (time.end sets the step count at the nominal dt).
+  o.output_override = tmp / "stopped";
+  const RunSummary stopped = RunCase(WriteCase(tmp.path(), text(0.05 * (whole.steps - 8))), o);
+  ASSERT_EQ(stopped.status, RunSummary::Status::kCompleted) << stopped.message;
+  ASSERT_FALSE(stopped.steady_converged);
+  ASSERT_EQ(stopped.steps, whole.steps - 8);
+  o.restart = tmp / "stopped" / "checkpoint.h5";
+  o.output_override = tmp / "restarted";
+  const RunSummary restarted = RunCase(WriteCase(tmp.path(), text(50.0)), o);
+  ASSERT_TRUE(restarted.steady_converged) << restarted.message;
+  EXPECT_EQ(restarted.steps, 8) << restarted.message;
+  const data::H5Reader a(tmp / "whole" / "checkpoint.h5"), b(tmp / "restarted" / "checkpoint.h5");
+  EXPECT_EQ(a.NumberAttribute("/", "step"), b.NumberAttribute("/", "step"));
+  EXPECT_EQ(a.NumberAttribute("/", "time"), b.NumberAttribute("/", "time"));
+  for (const char* name : {"U", "p", "phi", "run/steady_window"}) {
+    EXPECT_EQ(a.Read(name).values, b.Read(name).values) << name;
+  }
+}
+
 TEST(CaseRunner, BadSteadyAndResistanceSectionsAreErrors) {
   const std::string t = CaseText();
   auto with = [&](const std::string& from, const std::string& to) {

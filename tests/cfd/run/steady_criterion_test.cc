@@ -82,5 +82,41 @@ TEST(SteadyCriterion, AStepWindowAndTwoGroups) {
   EXPECT_FALSE(c.Settled());
 }
 
+// Save and Load carry the window over a checkpoint: a criterion loaded
+// halfway measures every later step as the one that never stopped, eta
+// included; a truncated, padded or inconsistent array is a DataFileError.
+TEST(SteadyCriterion, SavedWindowResumesBitForBit) {
+  const SteadyCriterionOptions o{0.25, 4, 1e-3};
+  SteadyCriterion whole(o), resumed(o);
+  auto sample = [](int n) {
+    const double f = 10.0 + std::exp(-0.3 * n);
+    return std::vector<SteadyGroup>{{{f, 0.1 * f}, f}};
+  };
+  auto eta = [](int n) { return std::vector<double>{std::sin(0.1 * n), 1.0 + std::exp(-0.2 * n)}; };
+  for (int n = 0; n < 9; ++n) whole.Add(0.1 * n, sample(n), eta(n));
+  resumed.Load(whole.Save());
+  EXPECT_EQ(resumed.Save(), whole.Save());
+  EXPECT_EQ(resumed.force_change(), whole.force_change());
+  for (int n = 9; n < 30; ++n) {
+    whole.Add(0.1 * n, sample(n), eta(n));
+    resumed.Add(0.1 * n, sample(n), eta(n));
+    EXPECT_EQ(resumed.force_change(), whole.force_change()) << n;
+    EXPECT_EQ(resumed.eta_change(), whole.eta_change()) << n;
+    EXPECT_EQ(resumed.Settled(), whole.Settled()) << n;
+  }
+  SteadyCriterion fresh(o);
+  fresh.Load(SteadyCriterion(o).Save());  // an empty window
+  EXPECT_TRUE(std::isnan(fresh.force_change()));
+  std::vector<double> saved = whole.Save();
+  EXPECT_THROW(fresh.Load(std::vector<double>(saved.begin(), saved.end() - 1)), DataFileError);
+  saved.push_back(0.0);
+  EXPECT_THROW(fresh.Load(saved), DataFileError);
+  saved.pop_back();
+  saved[0] = 1e12;  // more samples than numbers
+  EXPECT_THROW(fresh.Load(saved), DataFileError);
+  saved[0] = 2.5;
+  EXPECT_THROW(fresh.Load(saved), DataFileError);
+}
+
 }  // namespace
 }  // namespace kelvin::cfd
