@@ -369,14 +369,6 @@ Resume ReadResume(const Job& job) {
   return r;
 }
 
-// The steady criterion's groups at the steps of `samples`: those the driver
-// measured, since the case's force patches are the sampled hull patches.
-std::vector<SteadyStep> SteadyPast(const std::vector<CaptiveSample>& samples, double arm) {
-  std::vector<SteadyStep> past;
-  for (const CaptiveSample& s : samples) past.push_back({s.time, {ShipLoadGroup(s.loads.Total(), arm)}});
-  return past;
-}
-
 // Runs (or resumes) one job through the run driver; false when the step
 // budget ran out first.
 bool ExecuteJob(Context& ctx, Job& job) {
@@ -394,14 +386,13 @@ bool ExecuteJob(Context& ctx, Job& job) {
   const PrimeScales scales{c.settings.rho, ctx.ship.Lpp,
                            ctx.file.cfd.draft > 0 ? ctx.file.cfd.draft : ctx.ship.d,
                            job.cfd_motion.speed};
-  // The steady criterion measures the loads the run samples, so that a
-  // resumed run can give it those of the steps before its checkpoint.
+  // The steady criterion measures the loads the run samples (the hull
+  // patches); its window goes into the run's checkpoints.
   c.force_patches = HullPatches(ctx, c);
   CaptiveSampler sampler(c, c.force_patches, scales);
   Resume resume = ReadResume(job);
   resume.cost.cells = c.mesh->n_cells();
   RunDriverOptions o;
-  if (resume.restart && job.settle) o.steady_past = SteadyPast(resume.samples, job.settle->ship_load_arm);
   sampler.Restore(std::move(resume.samples));
   JobFiles files(ctx, job, sampler, resume.cost);
   Monitor* monitors[] = {&sampler, &files};

@@ -192,7 +192,6 @@ void Loop::Start() {
       throw DataFileError(fmt::format("{}: {}", options_.restart.string(), e.what()));
     }
   }
-  if (restarted && !options_.steady_past.empty()) time_control_.ResumePhase(options_.steady_past);
   const RunStart start{restarted, scalars};
   for (Monitor* m : monitors_) m->Start(solver_, history_, start);
   solver_.SetOuterIterationHook([this](int outer) {

@@ -37,13 +37,6 @@ struct RunDriverOptions {
   std::function<int()> stop_requested;
   bool progress = true;
   std::string label = "kelvin run";
-  // On a restart: the steady criterion's groups at every step before it,
-  // oldest first (a captive run rebuilds them from its samples), so that the
-  // run settles at the step the uninterrupted run would have
-  // (TimeControl::ResumePhase). Empty: the phase and window the checkpoint
-  // kept (TimeControl::RestorePhase; a checkpoint of an older layout
-  // without them starts the criterion again at the restart).
-  std::vector<SteadyStep> steady_past;
 };
 
 struct RunDriverSummary {

@@ -82,18 +82,6 @@ void TimeControl::Start(PimpleSolver& solver, bool restarted, const std::map<std
   for (int i = 0; i < solver.mesh().n_cells(); ++i) U[i] = initial_velocity;
 }
 
-void TimeControl::ResumePhase(std::span<const SteadyStep> past) {
-  KELVIN_CHECK(options_.rigid_lid_windows == 0.0, "a resumed phase is the run's only one (no rigid lid)");
-  StartPhase(0.0);
-  for (const SteadyStep& step : past) {
-    ++phase_steps_;
-    if (criterion_) criterion_->Add(step.time, step.groups, {});
-  }
-  if (!criterion_) return;
-  status_.force_change = criterion_->force_change();
-  status_.eta_change = criterion_->eta_change();
-}
-
 double TimeControl::NextTimeStep() const {
   const int ramp = options_.ramp_steps;
   if (ramp <= 1 || phase_steps_ >= ramp) return options_.dt;

@@ -23,8 +23,7 @@
 // The ramp counts steps of the present phase: the run, then the released
 // free surface. A checkpoint keeps the lid release time and the phase (its
 // start and steps, the lid's end, the criterion's window: RestorePhase), so
-// a restarted run ramps and settles as the uninterrupted one; a caller may
-// instead give the steps before the restart (ResumePhase).
+// a restarted run ramps and settles as the uninterrupted one.
 #pragma once
 
 #include <map>
@@ -75,12 +74,6 @@ struct SteadyStatus {
   double release_time = 0.0;  // NaN: not released (or never held)
 };
 
-// The steady criterion's input at one step (without eta).
-struct SteadyStep {
-  double time = 0.0;  // s
-  std::vector<SteadyGroup> groups;
-};
-
 class TimeControl {
  public:
   // free_surface: the case's linearized free surface (null: none).
@@ -97,12 +90,6 @@ class TimeControl {
   // without them leave the phase restarting at the restart time.
   void RestorePhase(const std::map<std::string, double>& scalars,
                     const std::map<std::string, std::vector<double>>& arrays);
-  // After Start on a restart: the run's one phase (from time 0, no rigid
-  // lid) goes on with `past`, every step of it before the restart, oldest
-  // first. The criterion, min_windows and the ramp then see what they would
-  // have seen without the restart (a captive run keeps its loads in its
-  // samples; the checkpoint holds no window).
-  void ResumePhase(std::span<const SteadyStep> past);
   double NextTimeStep() const;
   // Steps left to time.end at the nominal dt.
   int StepsToEnd(double time) const;
