@@ -434,9 +434,15 @@ void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o,
       "0;\n"
       "    nLayerIter 50;\n    nRelaxedIter 20;\n}}\n\n",
       std::max(layers, 1), SnappyFinalLayerRatio(o, l.length), o.expansion_ratio);
+  // minTetQuality -1e30: the face-decomposition tet test guards OpenFOAM's
+  // particle tracking, which kelvin does not use; kelvin's geometry is built
+  // from face-centre pyramids (Mesh), which minVol keeps strictly positive.
+  // With the tet test on (1e-15), the layer mover shrank the layers to
+  // nothing wherever a snapped cell on the curved bow or stern failed it:
+  // on the DTC it kept 82% of the layers over the hull area; without it 95%.
   s += "meshQualityControls\n{\n    maxNonOrtho 65;\n    maxBoundarySkewness 20;\n    "
        "maxInternalSkewness 4;\n"
-       "    maxConcave 80;\n    minVol 1e-13;\n    minTetQuality 1e-15;\n    minArea -1;\n    "
+       "    maxConcave 80;\n    minVol 1e-13;\n    minTetQuality -1e30;\n    minArea -1;\n    "
        "minTwist 0.02;\n"
        "    minDeterminant 0.001;\n    minFaceWeight 0.05;\n    minVolRatio 0.01;\n    "
        "minTriangleTwist -1;\n"

@@ -277,6 +277,17 @@ TEST(SnappyMesherTest, DtcGridQualityReport) {
   EXPECT_GE(g.snappy.area_without_layers_percent, 0.0);
   EXPECT_LE(g.snappy.layers_area_percent, 100.0 - g.snappy.area_without_layers_percent + 1e-9);
   EXPECT_THAT(g.report, HasSubstr("layers kept over the hull area"));
+  if (full) {
+    // Issue #25 acceptance 2 on the default grid: at least 90% of the
+    // requested layers over the hull area (97.6% measured on 2026-12-02;
+    // 84.1% while the tet-quality test shrank the layers at the bow and
+    // stern), and the first-cell y+ estimate within a factor 1.5 of the
+    // target.
+    EXPECT_GE(g.snappy.layers_area_percent, 90.0);
+    EXPECT_LT(g.snappy.area_without_layers_percent, 2.0);
+    EXPECT_GT(g.y_plus.mean, c.y_plus / 1.5);
+    EXPECT_LT(g.y_plus.mean, c.y_plus * 1.5);
+  }
 }
 
 }  // namespace

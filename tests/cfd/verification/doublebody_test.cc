@@ -133,6 +133,14 @@ TEST(DoubleBodyTest, DtcGrid1) {
   EXPECT_NEAR(r.C_T, c_v_ref, 0.05 * c_v_ref);
   EXPECT_GT(r.C_P, 0.0);
   EXPECT_LT(r.C_P, 2.0 * (kDtcFormFactor - 1.0) / kDtcFormFactor * r.C_T);
+  // Issue #25 acceptance 2: the friction of the default grid between 0.97
+  // and 1.07 of ITTC-57, and the hull y+ mean within a factor 1.5 of the
+  // mesh case's target.
+  const double c_f0 = data::Ittc57FrictionCoefficient(kDtcReynolds);
+  EXPECT_GE(r.C_F / c_f0, 0.97);
+  EXPECT_LE(r.C_F / c_f0, 1.07);
+  EXPECT_GT(r.y_plus_mean, mc.y_plus / 1.5);
+  EXPECT_LT(r.y_plus_mean, mc.y_plus * 1.5);
 }
 
 TEST(DoubleBodyTest, WigleyCoarseGrid) {
