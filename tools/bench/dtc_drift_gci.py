@@ -1,0 +1,193 @@
+#!/usr/bin/python3
+"""Benchmark: the DTC's static drift on a three-grid family, section
+`dtc_drift_gci` of BENCHMARKS.md (issue #25, acceptance 3).
+
+Runs the campaign data/cases/captive_cfd/dtc_campaign.yaml (static drift at
+0, 5 and 10 deg, each ended on the steady criterion of the ship-axes loads)
+on each grid of the family of data/cases/mesh/dtc_snappy.yaml, identifies
+the linear drift derivatives of each grid with `kelvin identify`, and
+tabulates
+  - per grid and angle: the settled X', Y', N' (mean from the settling time
+    on), whether the run met its criterion, the change over its window;
+  - the grid convergence of Y' and N' at 10 deg, of X' at 0 deg and of the
+    identified Y_v, N_v (Celik et al. 2008: apparent order, Richardson
+    extrapolation, fine-grid GCI; the same procedure as `kelvin gci`, here
+    on values read from three campaigns rather than three runs of a case).
+
+Usage:
+  kelvin mesh data/cases/mesh/dtc_snappy.yaml --family 3 -o build/grids/doublebody_dtc
+  tools/bench/dtc_drift_gci.py --kelvin build/ci/tools/kelvin [--jobs 2] [--write BENCHMARKS.md]
+Finished runs are reused (the campaign resumes); the three campaigns take
+about two CPU hours on this machine.
+"""
+import argparse
+import datetime
+import math
+import os
+import re
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pimple_vs_openfoam import write_or_print  # noqa: E402
+
+NAME = "dtc_drift_gci"
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+CAPTIVE = os.path.join(ROOT, "data", "cases", "captive_cfd")
+ANGLES = (0.0, 5.0, 10.0)
+
+
+def grid_campaign(grids, grid, work):
+    """Copies the campaign and its case into work/gridN with grid N's polyMesh."""
+    d = os.path.join(work, f"grid{grid}")
+    os.makedirs(d, exist_ok=True)
+    mesh = os.path.abspath(os.path.join(grids, f"grid{grid}", "constant", "polyMesh"))
+    with open(os.path.join(CAPTIVE, "dtc_case.yaml")) as f:
+        case = re.sub(r"poly_mesh: [^}]*}", f"poly_mesh: {mesh}}}", f.read())
+    with open(os.path.join(CAPTIVE, "dtc_campaign.yaml")) as f:
+        campaign = f.read()
+    campaign = campaign.replace("ship: ../../ships/dtc.yaml", "ship: " + os.path.join(ROOT, "data/ships/dtc.yaml"))
+    campaign = re.sub(r"directory: [^\n]*", "directory: runs", campaign)
+    for name, text in (("dtc_case.yaml", case), ("dtc_campaign.yaml", campaign)):
+        with open(os.path.join(d, name), "w") as f:
+            f.write(text)
+    return d
+
+
+def run(cmd, log):
+    env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
+    with open(log, "w") as f:
+        p = subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT)
+    if p.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed; see {log}")
+
+
+def settled_run(directory):
+    """Settled means of X', Y', N' and the criterion's record of one drift run."""
+    with h5py.File(os.path.join(directory, "result.h5"), "r") as f:
+        t = f["captive/time"][:]
+        keep = t >= f.attrs["t_settle"] - 1e-9
+        r = {k: float(np.mean(f["captive/" + k][:][keep])) for k in ("X_prime", "Y_prime", "N_prime")}
+        r.update(settled=bool(f.attrs["settled"]), change=float(f.attrs["settle_change"]),
+                 t_settle=float(f.attrs["t_settle"]), t_end=float(t[-1]), steps=len(t),
+                 cpu=float(f.attrs["cpu_seconds"]), cells=int(f.attrs["cells"]))
+    return r
+
+
+def derivatives(path):
+    """Y_v, N_v and their standard errors from a kelvin identify set."""
+    text = open(path).read()
+    out = {}
+    for name in ("Y_v", "N_v"):
+        m = re.search(rf"\b{name}:\s*{{[^}}]*value:\s*([-+0-9.eE]+)[^}}]*std_error:\s*([-+0-9.eE]+)", text)
+        if not m:
+            m2 = re.search(rf"\b{name}:\s*([-+0-9.eE]+)", text)
+            if not m2:
+                sys.exit(f"{path}: no {name}")
+            out[name] = (float(m2.group(1)), float("nan"))
+        else:
+            out[name] = (float(m.group(1)), float(m.group(2)))
+    return out
+
+
+def family_sizes(grids):
+    """h = (V/N)^(1/3) of grids 1..3 from family.txt."""
+    h = {}
+    for line in open(os.path.join(grids, "family.txt")):
+        w = line.split()
+        if w and w[0].isdigit():
+            h[int(w[0])] = (float(w[2]), int(w[1]))
+    return h
+
+
+def gci(h, phi):
+    """Celik et al. (2008) three-grid procedure, grid 1 finest."""
+    r21, r32 = h[1] / h[0], h[2] / h[1]
+    e21, e32 = phi[1] - phi[0], phi[2] - phi[1]
+    R = e21 / e32 if e32 != 0 else 0.0
+    kind = "monotonic" if 0 < R < 1 else ("oscillatory" if -1 < R < 0 else "divergent")
+    p = 0.0
+    if e21 != 0 and e32 != 0:
+        s = 1.0 if e32 / e21 > 0 else -1.0
+        ln = math.log(abs(e32 / e21))
+        p = abs(ln) / math.log(r21)
+        for _ in range(200):
+            num, den = r21 ** p - s, r32 ** p - s
+            q = math.log(num / den) if num > 0 and den > 0 else 0.0
+            nxt = abs(ln + q) / math.log(r21)
+            if abs(nxt - p) < 1e-12 * max(1.0, p):
+                p = nxt
+                break
+            p = nxt
+    rp = r21 ** p
+    ext = (rp * phi[0] - phi[1]) / (rp - 1) if rp != 1 else phi[0]
+    e_a21 = abs((phi[0] - phi[1]) / phi[0])
+    gci21 = 1.25 * e_a21 / (rp - 1) if rp != 1 else float("nan")
+    return {"kind": kind, "p": p, "ext": ext, "gci21": gci21, "R": R}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--kelvin", required=True)
+    ap.add_argument("--grids", default=os.path.join(ROOT, "build", "grids", "doublebody_dtc"))
+    ap.add_argument("--work", default=os.path.join(ROOT, "results", "dtc_drift_gci"))
+    ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--grid", type=int, action="append", help="run only this grid (repeatable); the table needs all")
+    ap.add_argument("--write", help="replace the section in this file (e.g. BENCHMARKS.md)")
+    a = ap.parse_args()
+
+    sizes = family_sizes(a.grids)
+    grids = a.grid or [3, 2, 1]
+    for g in grids:
+        d = grid_campaign(a.grids, g, a.work)
+        run([a.kelvin, "captive", os.path.join(d, "dtc_campaign.yaml"), "--jobs", str(a.jobs), "--no-progress"],
+            os.path.join(d, "captive.log"))
+        run([a.kelvin, "identify", os.path.join(d, "runs", "dtc_cfd.h5"), "-o", os.path.join(d, "derivatives.yaml")],
+            os.path.join(d, "identify.log"))
+        print(f"grid {g}: done", file=sys.stderr)
+    if a.grid and len(a.grid) < 3:
+        return
+
+    res = {g: {b: settled_run(os.path.join(a.work, f"grid{g}", "runs", f"drift_{b:+.1f}deg")) for b in ANGLES}
+           for g in (1, 2, 3)}
+    der = {g: derivatives(os.path.join(a.work, f"grid{g}", "derivatives.yaml")) for g in (1, 2, 3)}
+    h = [sizes[g][0] for g in (1, 2, 3)]
+    lines = [
+        "## DTC static drift on three grids, with GCI (issue #25, acceptance 3)\n",
+        f"Run by `tools/bench/dtc_drift_gci.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC (2 shared "
+        "cores). The campaign `data/cases/captive_cfd/dtc_campaign.yaml` (DTC model 1:59.407 at 1.668 m/s, fixed "
+        "at the design waterline, k-omega SST with wall functions, the linearized free surface, the grid moving "
+        "with the hull) on each grid of `data/cases/mesh/dtc_snappy.yaml --family 3`. Each drift run ends when "
+        "the ship-axes loads change by less than the campaign's tolerance over its window; the values are the "
+        "means from the settling time on. Primes: X' = X / (rho/2 U^2 Lpp d), N' = N / (rho/2 U^2 Lpp^2 d).\n",
+        "| grid | cells | h (m) | drift (deg) | X' | Y' | N' | settled | change over the window | t_settle (s) "
+        "| steps | CPU (s) |",
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | :---: | ---: | ---: | ---: | ---: |",
+    ]
+    for g in (1, 2, 3):
+        for b in ANGLES:
+            r = res[g][b]
+            lines.append(f"| {g} | {r['cells']} | {sizes[g][0]:.4f} | {b:g} | {r['X_prime']:.5f} | "
+                         f"{r['Y_prime']:.5f} | {r['N_prime']:.5f} | {'yes' if r['settled'] else '**NO**'} | "
+                         f"{100 * r['change']:.2f}% | {r['t_settle']:.1f} | {r['steps']} | {r['cpu']:.0f} |")
+    lines += ["", "| quantity | grid 3 | grid 2 | grid 1 | convergence | p | extrapolated | GCI21 (fine grid) |",
+              "| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: |"]
+    quantities = [("X' at 0 deg", [res[g][0.0]["X_prime"] for g in (1, 2, 3)]),
+                  ("Y' at 10 deg", [res[g][10.0]["Y_prime"] for g in (1, 2, 3)]),
+                  ("N' at 10 deg", [res[g][10.0]["N_prime"] for g in (1, 2, 3)]),
+                  ("Y_v (kelvin identify)", [der[g]["Y_v"][0] for g in (1, 2, 3)]),
+                  ("N_v (kelvin identify)", [der[g]["N_v"][0] for g in (1, 2, 3)])]
+    for name, phi in quantities:
+        c = gci(h, phi)
+        lines.append(f"| {name} | {phi[2]:.5f} | {phi[1]:.5f} | {phi[0]:.5f} | {c['kind']} (R {c['R']:.3f}) | "
+                     f"{c['p']:.2f} | {c['ext']:.5f} | {100 * c['gci21']:.2f}% |")
+    se = {n: der[1][n][1] for n in ("Y_v", "N_v")}
+    lines += ["", f"Grid 1's fit standard errors (kelvin identify): Y_v {se['Y_v']:.2g}, N_v {se['N_v']:.2g}.\n"]
+    write_or_print(a.write, NAME, "\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
