@@ -30,6 +30,7 @@ import sys
 
 import h5py
 import numpy as np
+import yaml
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pimple_vs_openfoam import write_or_print  # noqa: E402
@@ -78,19 +79,10 @@ def settled_run(directory):
 
 
 def derivatives(path):
-    """Y_v, N_v and their standard errors from a kelvin identify set."""
-    text = open(path).read()
-    out = {}
-    for name in ("Y_v", "N_v"):
-        m = re.search(rf"\b{name}:\s*{{[^}}]*value:\s*([-+0-9.eE]+)[^}}]*std_error:\s*([-+0-9.eE]+)", text)
-        if not m:
-            m2 = re.search(rf"\b{name}:\s*([-+0-9.eE]+)", text)
-            if not m2:
-                sys.exit(f"{path}: no {name}")
-            out[name] = (float(m2.group(1)), float("nan"))
-        else:
-            out[name] = (float(m.group(1)), float(m.group(2)))
-    return out
+    """Y_v, N_v and their standard errors from a kelvin identify set (hull: and standard_errors: sections)."""
+    with open(path) as f:
+        d = yaml.safe_load(f)
+    return {n: (float(d["hull"][n]), float(d["standard_errors"][n])) for n in ("Y_v", "N_v")}
 
 
 def family_sizes(grids):
