@@ -244,8 +244,12 @@ TEST(SurfaceRepair, AllDefectsTogetherAreRepaired) {
   ExpectSameHydrostatics(in);
 }
 
-// The repaired surface meshes (snappyHexMesh, a coarse grid of about 15k
-// cells) to the same hull volume as the clean one within 0.1%.
+// The repaired surface meshes (snappyHexMesh, a coarse grid) to the same hull
+// volume as the clean one within 0.1%, and the snapped hull encloses the
+// surface's volume within 1%. The snapping deficit falls with the hull cells:
+// -2.1% with level-3 hull cells (0.12 m), -0.71% with level 4 (0.06 m), so
+// the grid is level 4: at level 3 the bound would test the grid, not the
+// repair.
 TEST(SurfaceRepair, RepairedSurfaceMeshesLikeTheCleanOne) {
   const TriangleSurface s = WithEveryDefect();
   const HullIntake in = IntakeOf(s);
@@ -254,14 +258,14 @@ TEST(SurfaceRepair, RepairedSurfaceMeshesLikeTheCleanOne) {
   o.reynolds = 9.1e6;
   o.y_plus = 100;
   o.base_cells_per_length = 6;
-  o.hull_level = 3;
+  o.hull_level = 4;
   o.wake_level = 1;
   o.layers = 1;
   const double clean = HullPatchVolume(RunSnappy(CleanDtc(), o, tmp.path() / "clean"));
   const double repaired = HullPatchVolume(RunSnappy(in.surface, o, tmp.path() / "repaired"));
   std::printf("snappy hull patch volume: clean %.9g m^3, repaired %.9g m^3\n", clean, repaired);
   EXPECT_NEAR(repaired, clean, 1e-3 * clean);
-  EXPECT_NEAR(clean, in.hydrostatics.volume, 0.02 * in.hydrostatics.volume);
+  EXPECT_NEAR(clean, in.hydrostatics.volume, 0.01 * in.hydrostatics.volume);
 }
 
 TEST(SurfaceRepair, HoleBelowTheWaterlineIsRefused) {
