@@ -11,8 +11,8 @@ tabulates
     on), whether the run met its criterion, the change over its window;
   - the grid convergence of Y' and N' at 10 deg, of X' at 0 deg and of the
     identified Y_v, N_v (Celik et al. 2008: apparent order, Richardson
-    extrapolation, fine-grid GCI; the same procedure as `kelvin gci`, here
-    on values read from three campaigns rather than three runs of a case).
+    extrapolation, fine-grid GCI) by `kelvin gci --values` on the values
+    read from the three campaigns.
 
 Usage:
   kelvin mesh data/cases/mesh/dtc_snappy.yaml --family 3 -o build/grids/doublebody_dtc
@@ -22,7 +22,6 @@ about two CPU hours on this machine.
 """
 import argparse
 import datetime
-import math
 import os
 import re
 import subprocess
@@ -85,40 +84,16 @@ def derivatives(path):
     return {n: (float(d["hull"][n]), float(d["standard_errors"][n])) for n in ("Y_v", "N_v")}
 
 
-def family_sizes(grids):
-    """h = (V/N)^(1/3) of grids 1..3 from family.txt."""
-    h = {}
-    for line in open(os.path.join(grids, "family.txt")):
-        w = line.split()
-        if w and w[0].isdigit():
-            h[int(w[0])] = (float(w[2]), int(w[1]))
-    return h
-
-
-def gci(h, phi):
-    """Celik et al. (2008) three-grid procedure, grid 1 finest."""
-    r21, r32 = h[1] / h[0], h[2] / h[1]
-    e21, e32 = phi[1] - phi[0], phi[2] - phi[1]
-    R = e21 / e32 if e32 != 0 else 0.0
-    kind = "monotonic" if 0 < R < 1 else ("oscillatory" if -1 < R < 0 else "divergent")
-    p = 0.0
-    if e21 != 0 and e32 != 0:
-        s = 1.0 if e32 / e21 > 0 else -1.0
-        ln = math.log(abs(e32 / e21))
-        p = abs(ln) / math.log(r21)
-        for _ in range(200):
-            num, den = r21 ** p - s, r32 ** p - s
-            q = math.log(num / den) if num > 0 and den > 0 else 0.0
-            nxt = abs(ln + q) / math.log(r21)
-            if abs(nxt - p) < 1e-12 * max(1.0, p):
-                p = nxt
-                break
-            p = nxt
-    rp = r21 ** p
-    ext = (rp * phi[0] - phi[1]) / (rp - 1) if rp != 1 else phi[0]
-    e_a21 = abs((phi[0] - phi[1]) / phi[0])
-    gci21 = 1.25 * e_a21 / (rp - 1) if rp != 1 else float("nan")
-    return {"kind": kind, "p": p, "ext": ext, "gci21": gci21, "R": R}
+def kelvin_gci(kelvin, grids, work, quantities, settled):
+    """The GCI of each quantity by `kelvin gci --values` (Celik et al. 2008, the same code as a case study)."""
+    values = os.path.join(work, "gci_values.yaml")
+    with open(values, "w") as f:
+        yaml.safe_dump({"outputs": {k: [float(x) for x in v] for k, v in quantities.items()},
+                        "settled": [bool(x) for x in settled]}, f, sort_keys=False)
+    stem = os.path.join(work, "gci")
+    run([kelvin, "gci", "--grids", grids, "--values", values, "--report", stem], os.path.join(work, "gci.log"))
+    with open(stem + ".yaml") as f:
+        return yaml.safe_load(f)
 
 
 def main():
@@ -131,7 +106,6 @@ def main():
     ap.add_argument("--write", help="replace the section in this file (e.g. BENCHMARKS.md)")
     a = ap.parse_args()
 
-    sizes = family_sizes(a.grids)
     grids = a.grid or [3, 2, 1]
     for g in grids:
         d = grid_campaign(a.grids, g, a.work)
@@ -146,7 +120,15 @@ def main():
     res = {g: {b: settled_run(os.path.join(a.work, f"grid{g}", "runs", f"drift_{b:+.1f}deg")) for b in ANGLES}
            for g in (1, 2, 3)}
     der = {g: derivatives(os.path.join(a.work, f"grid{g}", "derivatives.yaml")) for g in (1, 2, 3)}
-    h = [sizes[g][0] for g in (1, 2, 3)]
+    quantities = {"X_prime_0deg": [res[g][0.0]["X_prime"] for g in (1, 2, 3)],
+                  "Y_prime_10deg": [res[g][10.0]["Y_prime"] for g in (1, 2, 3)],
+                  "N_prime_10deg": [res[g][10.0]["N_prime"] for g in (1, 2, 3)],
+                  "Y_v": [der[g]["Y_v"][0] for g in (1, 2, 3)],
+                  "N_v": [der[g]["N_v"][0] for g in (1, 2, 3)]}
+    settled = [all(res[g][b]["settled"] for b in ANGLES) for g in (1, 2, 3)]
+    report = kelvin_gci(a.kelvin, a.grids, a.work, quantities, settled)
+    out = report["outputs"]
+    h = {r["level"]: r["h"] for r in report["grids"]}
     lines = [
         "## DTC static drift on three grids, with GCI (issue #25, acceptance 3)\n",
         f"Run by `tools/bench/dtc_drift_gci.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC (2 shared "
@@ -162,20 +144,15 @@ def main():
     for g in (1, 2, 3):
         for b in ANGLES:
             r = res[g][b]
-            lines.append(f"| {g} | {r['cells']} | {sizes[g][0]:.4f} | {b:g} | {r['X_prime']:.5f} | "
+            lines.append(f"| {g} | {r['cells']} | {h[g]:.4f} | {b:g} | {r['X_prime']:.5f} | "
                          f"{r['Y_prime']:.5f} | {r['N_prime']:.5f} | {'yes' if r['settled'] else '**NO**'} | "
                          f"{100 * r['change']:.2f}% | {r['t_settle']:.1f} | {r['steps']} | {r['cpu']:.0f} |")
     lines += ["", "| quantity | grid 3 | grid 2 | grid 1 | convergence | p | extrapolated | GCI21 (fine grid) |",
               "| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: |"]
-    quantities = [("X' at 0 deg", [res[g][0.0]["X_prime"] for g in (1, 2, 3)]),
-                  ("Y' at 10 deg", [res[g][10.0]["Y_prime"] for g in (1, 2, 3)]),
-                  ("N' at 10 deg", [res[g][10.0]["N_prime"] for g in (1, 2, 3)]),
-                  ("Y_v (kelvin identify)", [der[g]["Y_v"][0] for g in (1, 2, 3)]),
-                  ("N_v (kelvin identify)", [der[g]["N_v"][0] for g in (1, 2, 3)])]
-    for name, phi in quantities:
-        c = gci(h, phi)
-        lines.append(f"| {name} | {phi[2]:.5f} | {phi[1]:.5f} | {phi[0]:.5f} | {c['kind']} (R {c['R']:.3f}) | "
-                     f"{c['p']:.2f} | {c['ext']:.5f} | {100 * c['gci21']:.2f}% |")
+    for name, phi in quantities.items():
+        c = out[name]
+        lines.append(f"| {name} | {phi[2]:.5f} | {phi[1]:.5f} | {phi[0]:.5f} | {c['convergence']} (R {c['R']:.3f}) | "
+                     f"{c['p']:.2f} | {c['extrapolated']:.5f} | {100 * c['gci_fine']:.2f}% |")
     se = {n: der[1][n][1] for n in ("Y_v", "N_v")}
     lines += ["", f"Grid 1's fit standard errors (kelvin identify): Y_v {se['Y_v']:.2g}, N_v {se['N_v']:.2g}.\n"]
     write_or_print(a.write, NAME, "\n".join(lines))

@@ -1,5 +1,7 @@
 // `kelvin gci case.yaml --family 3 --grids DIR`: grid-convergence study of a
-// case on a grid family (see cfd/verification/gci_study.h).
+// case on a grid family (see cfd/verification/gci_study.h);
+// `kelvin gci --grids DIR --values FILE`: the same for values computed on each
+// grid elsewhere (cfd/verification/gci_values.h).
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -8,6 +10,7 @@
 #include <vector>
 
 #include "cfd/verification/gci_study.h"
+#include "cfd/verification/gci_values.h"
 #include "data/schema/errors.h"
 #include "tools/kelvin/commands.h"
 
@@ -17,6 +20,7 @@ namespace kelvin::cli {
 Command AddGciCommand(CLI::App& app) {
   struct Args {
     std::string case_file;
+    std::string values;
     std::string grids;
     int family = 3;
     std::vector<std::string> outputs = {"C_T"};
@@ -31,9 +35,14 @@ Command AddGciCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "gci", "Grid-convergence study: run a case on each grid of a family (kelvin mesh --family) and report R, "
              "observed order, Richardson extrapolation and GCI of chosen outputs");
-  sub->add_option("case", args->case_file, "Case file (YAML) whose mesh.poly_mesh is replaced by each grid")
-      ->required()
-      ->check(CLI::ExistingFile);
+  CLI::Option* case_opt =
+      sub->add_option("case", args->case_file, "Case file (YAML) whose mesh.poly_mesh is replaced by each grid")
+          ->check(CLI::ExistingFile);
+  sub->add_option("--values", args->values,
+                  "Instead of a case: a YAML file of values already computed on grids 1-3 (outputs: {name: [g1, g2, "
+                  "g3]}, optional settled: [..]); needs --report")
+      ->check(CLI::ExistingFile)
+      ->excludes(case_opt);
   sub->add_option("--grids", args->grids, "Family directory written by kelvin mesh --family (family.txt, gridN/)")
       ->required();
   sub->add_option("--family", args->family, "Number of grids (grid 1 finest; the GCI uses three)")
@@ -53,6 +62,21 @@ Command AddGciCommand(CLI::App& app) {
   Command cmd;
   cmd.app = sub;
   cmd.run = [args]() {
+    if (!(args->ratio_tolerance > 0.0)) {
+      throw ArgumentError(fmt::format("--ratio-tolerance {}: expected a positive fraction", args->ratio_tolerance));
+    }
+    if (args->case_file.empty() == args->values.empty()) {
+      throw ArgumentError("kelvin gci: expected either a case file or --values FILE");
+    }
+    if (!args->values.empty()) {
+      if (args->report.empty()) throw ArgumentError("--values: expected --report PATH (the report's .h5 and .yaml)");
+      const cfd::GciStudy study =
+          cfd::GciStudyFromValues(cfd::ReadGridFamily(args->grids, 3, args->ratio_tolerance), args->values);
+      cfd::WriteGciReport(study, args->report, args->values);
+      std::printf("%s\nreport: %s.h5, %s.yaml\n", cfd::GciTable(study).c_str(), args->report.c_str(),
+                  args->report.c_str());
+      return;
+    }
     cfd::GciStudyOptions o;
     o.case_file = args->case_file;
     o.grids = args->grids;
@@ -63,9 +87,6 @@ Command AddGciCommand(CLI::App& app) {
     o.ratio_tolerance = args->ratio_tolerance;
     o.rerun = args->rerun;
     o.progress = !args->no_progress;
-    if (!(o.ratio_tolerance > 0.0)) {
-      throw ArgumentError(fmt::format("--ratio-tolerance {}: expected a positive fraction", o.ratio_tolerance));
-    }
     const cfd::GciStudy study = cfd::RunGciStudy(o);
     std::filesystem::path report = args->report;
     if (report.empty()) report = study.grids.front().directory.parent_path() / "gci";

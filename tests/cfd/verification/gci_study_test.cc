@@ -1,8 +1,10 @@
 // `kelvin gci` on synthetic data: the family table and its checks, output
 // extraction from a run history, the study over finished (reused) runs whose
-// outputs follow a known power law of h, the report files, and the single
-// clear error of each bad input, also through the command line.
+// outputs follow a known power law of h, the same from a values file
+// (--values), the report files, and the single clear error of each bad
+// input, also through the command line.
 #include "cfd/verification/gci_study.h"
+#include "cfd/verification/gci_values.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -252,6 +254,60 @@ TEST(GciStudyTest, CommandLine) {
   auto bad_output = RunCommand(base + " --grids " + (tmp / "grids").string() + " --outputs C_Q 2>&1");
   EXPECT_EQ(bad_output.exit_code, 1) << bad_output.output;
   EXPECT_THAT(bad_output.output, HasSubstr("no output 'C_Q'"));
+}
+
+// --values: values computed elsewhere on each grid give the same GCI as the
+// runs' outputs (phi = 0.004 + 0.05 h^2: p = 2, limit 0.004), the settled
+// flags reach the report, and each malformed entry is one clear error.
+TEST(GciStudyTest, ValuesFileGivesTheSameGciAsTheRuns) {
+  ScopedTempDir tmp;
+  WriteFamily(tmp / "grids", kH);
+  const auto grids = ReadGridFamily(tmp / "grids", 3);
+  Write(tmp / "values.yaml", fmt::format("outputs:\n  Y_prime: [{:.17g}, {:.17g}, {:.17g}]\n  twice: [{:.17g}, "
+                                         "{:.17g}, {:.17g}]\nsettled: [true, true, false]\n",
+                                         Phi(kH[0]), Phi(kH[1]), Phi(kH[2]), 2 * Phi(kH[0]), 2 * Phi(kH[1]),
+                                         2 * Phi(kH[2])));
+  const GciStudy study = GciStudyFromValues(grids, tmp / "values.yaml");
+  ASSERT_EQ(study.outputs.size(), 2u);
+  EXPECT_EQ(study.outputs[0].name, "Y_prime");
+  EXPECT_EQ(study.outputs[0].gci.convergence, Convergence::kMonotonic);
+  EXPECT_NEAR(study.outputs[0].gci.p, 2.0, 1e-8);
+  EXPECT_NEAR(study.outputs[0].gci.phi_ext, 0.004, 1e-12);
+  EXPECT_NEAR(study.outputs[1].gci.phi_ext, 0.008, 1e-12);
+  EXPECT_TRUE(study.grids[1].steady_converged);
+  EXPECT_FALSE(study.grids[2].steady_converged);
+  EXPECT_THAT(GciTable(study), HasSubstr("NO"));
+
+  const auto message = [&](const std::string& text) {
+    Write(tmp / "bad.yaml", text);
+    try {
+      GciStudyFromValues(grids, tmp / "bad.yaml");
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_THAT(message("outputs:\n  Y: [1, 2]\n"), HasSubstr("'outputs.Y'"));
+  EXPECT_THAT(message("outputs:\n  Y: [1, 2]\n"), HasSubstr("three values"));
+  EXPECT_THAT(message("outputs:\n  Y: [1, .nan, 2]\n"), HasSubstr("finite"));
+  EXPECT_THAT(message("outputs:\n  Y: [1, 2, 3]\nsettled: [true]\n"), HasSubstr("three booleans"));
+  EXPECT_THAT(message("outputs: {}\n"), HasSubstr("a map of output name"));
+  EXPECT_THAT(message("output:\n  Y: [1, 2, 3]\n"), HasSubstr("unknown key 'output'"));
+
+  const std::string kelvin = (kelvin::testing::ToolsDir() / "kelvin").string();
+  const std::string base = kelvin + " gci --grids " + (tmp / "grids").string() + " --values " +
+                           (tmp / "values.yaml").string();
+  auto ok = RunCommand(base + " --report " + (tmp / "rep").string() + " 2>&1");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_THAT(ok.output, HasSubstr("Y_prime"));
+  const data::H5Reader h5(tmp / "rep.h5");
+  EXPECT_NEAR(h5.Read("outputs/Y_prime/p").at(0), 2.0, 1e-8);
+  auto no_report = RunCommand(base + " 2>&1");
+  EXPECT_EQ(no_report.exit_code, 2) << no_report.output;
+  EXPECT_THAT(no_report.output, HasSubstr("--report"));
+  auto neither = RunCommand(kelvin + " gci --grids " + (tmp / "grids").string() + " 2>&1");
+  EXPECT_EQ(neither.exit_code, 2) << neither.output;
+  EXPECT_THAT(neither.output, HasSubstr("either a case file or --values"));
 }
 
 }  // namespace
