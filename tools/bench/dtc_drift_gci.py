@@ -12,7 +12,10 @@ tabulates
   - the grid convergence of Y' and N' at 10 deg, of X' at 0 deg and of the
     identified Y_v, N_v (Celik et al. 2008: apparent order, Richardson
     extrapolation, fine-grid GCI) by `kelvin gci --values` on the values
-    read from the three campaigns.
+    read from the three campaigns;
+  - grid 1's derivatives identified from the settled parts against the same
+    campaign analysed as before the steady criterion (every sample of the
+    first 10 s after the ramp), issue #25 acceptance 4 (DTC part).
 
 Usage:
   kelvin mesh data/cases/mesh/dtc_snappy.yaml --family 3 -o build/grids/doublebody_dtc
@@ -38,6 +41,7 @@ NAME = "dtc_drift_gci"
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 CAPTIVE = os.path.join(ROOT, "data", "cases", "captive_cfd")
 ANGLES = (0.0, 5.0, 10.0)
+FIXED_WINDOW = 10.0  # s after the ramp: the campaign window before the steady criterion (issue #25)
 
 
 def grid_campaign(grids, grid, work):
@@ -82,6 +86,54 @@ def derivatives(path):
     with open(path) as f:
         d = yaml.safe_load(f)
     return {n: (float(d["hull"][n]), float(d["standard_errors"][n])) for n in ("Y_v", "N_v")}
+
+
+def fixed_window_copy(src, dst, window):
+    """A copy of a campaign file as a fixed-window campaign would have written it.
+
+    Each steady run keeps its samples up to t_ramp + window and loses its
+    settling record, so `kelvin identify` uses every sample after the ramp: the
+    analysis before the steady criterion. The solver is deterministic, so the
+    truncated samples are those a run ended at t_ramp + window computes.
+    """
+    with h5py.File(src, "r") as fin, h5py.File(dst + ".tmp", "w") as fout:
+        for k, v in fin.attrs.items():
+            fout.attrs[k] = v
+        fin.copy("ship", fout)
+        for name, run in fin["runs"].items():
+            g = fout.create_group("runs/" + name)
+            for k, v in run.attrs.items():
+                if k not in ("t_settle", "settled", "settle_change"):
+                    g.attrs[k] = v
+            t = run["time"][:]
+            keep = t <= float(run.attrs["t_ramp"]) + window + 1e-9 if "t_settle" in run.attrs else slice(None)
+            for ds_name, ds in run.items():
+                d = g.create_dataset(ds_name, data=ds[:][keep], maxshape=(None,) + ds.shape[1:], chunks=True)
+                for k, v in ds.attrs.items():
+                    d.attrs[k] = v
+    os.replace(dst + ".tmp", dst)
+
+
+def hull_coefficients(path):
+    with open(path) as f:
+        return {k: float(v) for k, v in yaml.safe_load(f)["hull"].items()}
+
+
+def fixed_against_settled(kelvin, d):
+    """Grid 1's derivatives from the settled parts against a fixed 10 s window (issue #25 acceptance 4, DTC)."""
+    fixed_h5 = os.path.join(d, "fixed_window.h5")
+    fixed_window_copy(os.path.join(d, "runs", "dtc_cfd.h5"), fixed_h5, FIXED_WINDOW)
+    fixed_yaml = os.path.join(d, "derivatives_fixed_window.yaml")
+    run([kelvin, "identify", fixed_h5, "-o", fixed_yaml], os.path.join(d, "identify_fixed_window.log"))
+    fixed, settled = hull_coefficients(fixed_yaml), hull_coefficients(os.path.join(d, "derivatives.yaml"))
+    lines = ["", f"Grid 1's campaign analysed as before the steady criterion (every sample from the ramp to "
+             f"{FIXED_WINDOW:g} s after it, the samples the earlier fixed window computed) and on the settled "
+             "parts:\n", "| coefficient | fixed window | settled | settled / fixed - 1 |", "| --- | ---: | ---: | ---: |"]
+    for k in sorted(set(fixed) | set(settled)):
+        f, st = fixed.get(k), settled.get(k)
+        move = f"{100 * (st / f - 1):+.1f}%" if f and st is not None else "-"
+        lines.append(f"| {k} | {'-' if f is None else f'{f:.6g}'} | {'-' if st is None else f'{st:.6g}'} | {move} |")
+    return lines + [""]
 
 
 def kelvin_gci(kelvin, grids, work, quantities, settled):
@@ -155,6 +207,7 @@ def main():
                      f"{c['p']:.2f} | {c['extrapolated']:.5f} | {100 * c['gci_fine']:.2f}% |")
     se = {n: der[1][n][1] for n in ("Y_v", "N_v")}
     lines += ["", f"Grid 1's fit standard errors (kelvin identify): Y_v {se['Y_v']:.2g}, N_v {se['N_v']:.2g}.\n"]
+    lines += fixed_against_settled(a.kelvin, os.path.join(a.work, "grid1"))
     write_or_print(a.write, NAME, "\n".join(lines))
 
 
