@@ -51,6 +51,10 @@ def grid_campaign(grids, grid, work):
     mesh = os.path.abspath(os.path.join(grids, f"grid{grid}", "constant", "polyMesh"))
     with open(os.path.join(CAPTIVE, "dtc_case.yaml")) as f:
         case = re.sub(r"poly_mesh: [^}]*}", f"poly_mesh: {mesh}}}", f.read())
+    # The case's dt is grid 1's; each grid takes the same Courant number (dt in proportion to h).
+    h = family_h(grids)
+    dt1 = float(re.search(r"time: \{dt: ([0-9.eE+-]+)\}", case).group(1))
+    case = re.sub(r"time: \{dt: [0-9.eE+-]+\}", f"time: {{dt: {dt1 * h[grid] / h[1]:.4g}}}", case)
     with open(os.path.join(CAPTIVE, "dtc_campaign.yaml")) as f:
         campaign = f.read()
     campaign = campaign.replace("ship: ../../ships/dtc.yaml", "ship: " + os.path.join(ROOT, "data/ships/dtc.yaml"))
@@ -59,6 +63,17 @@ def grid_campaign(grids, grid, work):
         with open(os.path.join(d, name), "w") as f:
             f.write(text)
     return d
+
+
+def family_h(grids):
+    """h = (V/N)^(1/3) per grid level from the family's family.txt."""
+    h = {}
+    with open(os.path.join(grids, "family.txt")) as f:
+        for line in f:
+            w = line.split()
+            if w and w[0].isdigit():
+                h[int(w[0])] = float(w[2])
+    return h
 
 
 def run(cmd, log):
