@@ -201,7 +201,8 @@ def main():
         f"Run by `tools/bench/dtc_drift_gci.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC (2 shared "
         "cores). The campaign `data/cases/captive_cfd/dtc_campaign.yaml` (DTC model 1:59.407 at 1.668 m/s, fixed "
         "at the design waterline, k-omega SST with wall functions, the linearized free surface, the grid moving "
-        "with the hull) on each grid of `data/cases/mesh/dtc_snappy.yaml --family 3`. Each drift run ends when "
+        "with the hull) on each grid of `data/cases/mesh/dtc_snappy.yaml --family 3`, the time step in proportion to h "
+        "(the same Courant number on every grid; 0.1 s on grid 3). Each drift run ends when "
         "the ship-axes loads change by less than the campaign's tolerance over its window; the values are the "
         "means from the settling time on. Primes: X' = X / (rho/2 U^2 Lpp d), N' = N / (rho/2 U^2 Lpp^2 d).\n",
         "| grid | cells | h (m) | drift (deg) | X' | Y' | N' | settled | change over the window | t_settle (s) "
