@@ -131,7 +131,7 @@ def fixed_window_copy(src, dst, window):
 
 def hull_coefficients(path):
     with open(path) as f:
-        return {k: float(v) for k, v in yaml.safe_load(f)["hull"].items()}
+        return {k: float(v) for k, v in yaml.safe_load(f)["hull"].items() if v is not None}
 
 
 def fixed_against_settled(kelvin, d):
@@ -145,9 +145,12 @@ def fixed_against_settled(kelvin, d):
              f"{FIXED_WINDOW:g} s after it, the samples the earlier fixed window computed) and on the settled "
              "parts:\n", "| coefficient | fixed window | settled | settled / fixed - 1 |", "| --- | ---: | ---: | ---: |"]
     for k in sorted(set(fixed) | set(settled)):
-        f, st = fixed.get(k), settled.get(k)
-        move = f"{100 * (st / f - 1):+.1f}%" if f and st is not None else "-"
-        lines.append(f"| {k} | {'-' if f is None else f'{f:.6g}'} | {'-' if st is None else f'{st:.6g}'} | {move} |")
+        f, st = fixed.get(k, 0.0), settled.get(k, 0.0)
+        if f == 0.0 and st == 0.0:
+            continue  # not excited by a static-drift matrix
+        move = f"{100 * (st / f - 1):+.1f}%" if f and st else "-"
+        lines.append(f"| {k} | {f'{f:.6g}' if f else 'dropped'} | {f'{st:.6g}' if st else 'dropped'} | {move} |")
+    lines.append("\n'dropped': kelvin identify held the term at 0 (standard error above 25% of the value).")
     return lines + [""]
 
 
