@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -34,9 +35,15 @@ std::vector<std::unique_ptr<Monitor>> MakeMonitors(const Case& c) {
   return m;
 }
 
+// A change over the criterion's window; NaN until the run has filled one.
+std::string ChangeText(double change) {
+  return std::isfinite(change) ? fmt::format("{:.3g}", change) : std::string("unknown (no full window yet)");
+}
+
 std::string SteadyLine(const SteadyStatus& st, const SteadyOptions& o) {
-  const std::string changes = fmt::format("force change {:.3g}, eta change {:.3g} over {:.4g} s / >= {} steps",
-                                          st.force_change, st.eta_change, st.window, o.criterion.window_steps);
+  const std::string changes = fmt::format("force change {}, eta change {} over {:.4g} s / >= {} steps",
+                                          ChangeText(st.force_change), ChangeText(st.eta_change), st.window,
+                                          o.criterion.window_steps);
   return st.settled ? fmt::format("steady: settled at step {} ({})", st.settled_step, changes)
                     : fmt::format("steady: NOT settled by time.end ({}, tolerance {:.3g})", changes,
                                   o.criterion.tolerance);
@@ -87,8 +94,13 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   if (c.settings.time.steady) summary.message += "\n  " + SteadyLine(d.steady, *c.settings.time.steady);
   for (const std::string& line : d.report) summary.message += "\n  " + line;
   if (c.settings.time.steady && !d.steady.settled) {
-    spdlog::warn("{}: the steady criterion was NOT met by time.end; the forces still change by {:.3g} of their size",
-                 case_file.string(), d.steady.force_change);
+    if (std::isfinite(d.steady.force_change)) {
+      spdlog::warn("{}: the steady criterion was NOT met by time.end; the forces still change by {:.3g} of their size",
+                   case_file.string(), d.steady.force_change);
+    } else {
+      spdlog::warn("{}: the steady criterion was NOT met by time.end; the run ended before its first full window",
+                   case_file.string());
+    }
   }
   return summary;
 }
