@@ -84,12 +84,12 @@ def run(cmd, log):
         sys.exit(f"{' '.join(cmd)} failed; see {log}")
 
 
-def settled_run(directory):
-    """Settled means of X', Y', N' and the criterion's record of one drift run."""
+def settled_run(directory, channels=("X_prime", "Y_prime", "N_prime")):
+    """Settled means of the captive channels and the criterion's record of one drift run."""
     with h5py.File(os.path.join(directory, "result.h5"), "r") as f:
         t = f["captive/time"][:]
         keep = t >= f.attrs["t_settle"] - 1e-9
-        r = {k: float(np.mean(f["captive/" + k][:][keep])) for k in ("X_prime", "Y_prime", "N_prime")}
+        r = {k: float(np.mean(f["captive/" + k][:][keep])) for k in channels}
         r.update(settled=bool(f.attrs["settled"]), change=float(f.attrs["settle_change"]),
                  t_settle=float(f.attrs["t_settle"]), t_end=float(t[-1]), steps=len(t),
                  cpu=float(f.attrs["cpu_seconds"]), cells=int(f.attrs["cells"]))

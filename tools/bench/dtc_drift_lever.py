@@ -19,26 +19,14 @@ import os
 import re
 import sys
 
-import h5py
-import numpy as np
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from dtc_drift_gci import ROOT, grid_campaign, run  # noqa: E402
+from dtc_drift_gci import ROOT, grid_campaign, run, settled_run  # noqa: E402
 from pimple_vs_openfoam import write_or_print  # noqa: E402
 
 NAME = "dtc_drift_lever"
 DOUBLE_BODY_FS = "  freeSurface: {U: {type: slip}, p: {type: zeroGradient}}\n"
-
-
-def settled_parts(run_dir):
-    """Settled means of the ship-axes loads (total, pressure, viscous) of one drift run."""
-    with h5py.File(os.path.join(run_dir, "result.h5"), "r") as f:
-        t = f["captive/time"][:]
-        keep = t >= f.attrs["t_settle"] - 1e-9
-        out = {k: float(np.mean(f["captive/" + k][:][keep]))
-               for k in ("Y_prime", "N_prime", "Y", "Y_pressure", "Y_viscous", "N", "N_pressure", "N_viscous")}
-        out["settled"] = bool(f.attrs["settled"])
-    return out
+# The settled ship-axes loads read from each drift run: totals, pressure and viscous parts.
+CHANNELS = ("Y_prime", "N_prime", "Y", "Y_pressure", "Y_viscous", "N", "N_pressure", "N_viscous")
 
 
 def double_body_campaign(grids, grid, work):
@@ -75,9 +63,9 @@ def main():
     g = a.double_body_grid
     d = double_body_campaign(a.grids, g, a.work)
     run([a.kelvin, "captive", os.path.join(d, "dtc_campaign.yaml"), "--no-progress"], os.path.join(d, "captive.log"))
-    lfs = {k: {b: settled_parts(os.path.join(a.gci_work, f"grid{k}", "runs", f"drift_{b:+.1f}deg")) for b in (5.0, 10.0)}
+    lfs = {k: {b: settled_run(os.path.join(a.gci_work, f"grid{k}", "runs", f"drift_{b:+.1f}deg"), CHANNELS) for b in (5.0, 10.0)}
            for k in (1, 2, 3)}
-    db = settled_parts(os.path.join(d, "runs", "drift_+10.0deg"))
+    db = settled_run(os.path.join(d, "runs", "drift_+10.0deg"), CHANNELS)
     lines = [
         "## Where the DTC's lateral force at drift acts (issue #25, the aft body's lateral force)\n",
         f"Run by `tools/bench/dtc_drift_lever.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC from the settled "
