@@ -38,26 +38,28 @@ Command AddGciCommand(CLI::App& app) {
   CLI::Option* case_opt =
       sub->add_option("case", args->case_file, "Case file (YAML) whose mesh.poly_mesh is replaced by each grid")
           ->check(CLI::ExistingFile);
-  sub->add_option("--values", args->values,
+  CLI::Option* values_opt = sub->add_option("--values", args->values,
                   "Instead of a case: a YAML file of values already computed on grids 1-3 (outputs: {name: [g1, g2, "
                   "g3]}, optional settled: [..]); needs --report")
       ->check(CLI::ExistingFile)
       ->excludes(case_opt);
   sub->add_option("--grids", args->grids, "Family directory written by kelvin mesh --family (family.txt, gridN/)")
       ->required();
-  sub->add_option("--family", args->family, "Number of grids (grid 1 finest; the GCI uses three)")
+  CLI::Option* family_opt = sub->add_option("--family", args->family, "Number of grids (grid 1 finest; the GCI uses three)")
       ->capture_default_str();
-  sub->add_option("--outputs", args->outputs,
+  CLI::Option* outputs_opt = sub->add_option("--outputs", args->outputs,
                   "Outputs: C_T, C_F, C_P, X, Y, N, X_prime, Y_prime, N_prime or a history.h5 dataset "
                   "(name or name:column); comma-separated or repeated")
       ->capture_default_str();
-  sub->add_option("--runs", args->runs, "Directory of the runs (default: <output.directory>/gci)");
+  CLI::Option* runs_opt = sub->add_option("--runs", args->runs, "Directory of the runs (default: <output.directory>/gci)");
   sub->add_option("--report", args->report, "Report path without extension (writes .h5 and .yaml; default <runs>/gci)");
-  sub->add_option("--average", args->average, "Mean of each output over the last N steps")->capture_default_str();
+  CLI::Option* average_opt = sub->add_option("--average", args->average, "Mean of each output over the last N steps")->capture_default_str();
   sub->add_option("--ratio-tolerance", args->ratio_tolerance,
                   "Largest relative difference between the refinement ratios h2/h1 and h3/h2")
       ->capture_default_str();
-  sub->add_flag("--rerun", args->rerun, "Run every grid again, even if a finished run is there");
+  CLI::Option* rerun_opt = sub->add_flag("--rerun", args->rerun, "Run every grid again, even if a finished run is there");
+  // The values file carries its own outputs and its three grids; these only steer runs.
+  for (CLI::Option* o : {family_opt, outputs_opt, runs_opt, average_opt, rerun_opt}) values_opt->excludes(o);
   sub->add_flag("--no-progress", args->no_progress, "No progress line");
   Command cmd;
   cmd.app = sub;

@@ -305,6 +305,10 @@ TEST(GciStudyTest, ValuesFileGivesTheSameGciAsTheRuns) {
   auto no_report = RunCommand(base + " 2>&1");
   EXPECT_EQ(no_report.exit_code, 2) << no_report.output;
   EXPECT_THAT(no_report.output, HasSubstr("--report"));
+  // The values file names its outputs: a run's --outputs would be ignored, so it is refused.
+  auto with_outputs = RunCommand(base + " --report " + (tmp / "rep").string() + " --outputs C_T 2>&1");
+  EXPECT_NE(with_outputs.exit_code, 0) << with_outputs.output;
+  EXPECT_THAT(with_outputs.output, HasSubstr("--outputs"));
   auto neither = RunCommand(kelvin + " gci --grids " + (tmp / "grids").string() + " 2>&1");
   EXPECT_EQ(neither.exit_code, 2) << neither.output;
   EXPECT_THAT(neither.output, HasSubstr("either a case file or --values"));
