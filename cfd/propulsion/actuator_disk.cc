@@ -243,15 +243,20 @@ void ActuatorDisk::Normalize(const Mesh& mesh, const std::vector<CellLoad>& load
 void ActuatorDisk::CheckWalls(const Mesh& mesh) const {
   std::vector<char> in_disk(mesh.n_cells(), 0);
   for (int c : cells_) in_disk[c] = 1;
+  const double r_hub = 0.5 * options_.hub_ratio * options_.diameter;
   for (const Patch& patch : mesh.patches()) {
     if (patch.kind != PatchKind::kWall) continue;
     for (int f = patch.start; f < patch.start + patch.size; ++f) {
       const int owner = mesh.owner()[f];
       const double half_cell = 0.5 * std::cbrt(mesh.cell_volumes()[owner]);
+      // Within the hub radius (grown by half a cell, as the annulus is) the
+      // wall is the shaft boss the propeller sits on: the loading is zero
+      // there, so the disk may meet it.
+      if (ToDisk(options_, mesh.face_centres()[f]).radial.norm() < r_hub + half_cell) continue;
       if (in_disk[owner] || DistanceToDisk(options_, mesh.face_centres()[f], half_cell) == 0.0) {
         throw ConfigError(fmt::format(
             "{}.centre = {}: the disk (D = {} m, thickness {} m) touches wall patch '{}' at face centre {} of mesh "
-            "'{}': expected the disk clear of the hull by at least half a cell",
+            "'{}': expected the disk clear of the hull by at least half a cell outside the hub radius",
             options_.name, Format(options_.centre), options_.diameter, options_.thickness, patch.name,
             Format(mesh.face_centres()[f]), mesh.source()));
       }

@@ -81,8 +81,10 @@ class ActuatorDisk {
   // `mesh` must hold its body-fixed geometry (no placement yet); the disk
   // keeps its cells and body-axis directions forever. Throws ConfigError
   // when the disk has no cells (outside the mesh), touches a wall (a disk
-  // cell owns a wall face, or a wall face centre lies within the cylinder
-  // grown by half the adjacent cell's size: the disk overlaps the hull) or
+  // cell owns a wall face, or a wall face centre lies within the annulus
+  // grown by half the adjacent cell's size: the disk overlaps the hull;
+  // wall faces within the hub radius grown by half a cell are the shaft
+  // boss and allowed) or
   // an option is bad. Warns (spdlog) when fewer than min_cells_across cells
   // span the diameter.
   ActuatorDisk(const Mesh& mesh, ActuatorDiskOptions options);

@@ -715,6 +715,28 @@ TEST(ActuatorDiskErrors, OverlapsTheHull) {
   ExpectDiskError(mesh, o, {"touches wall patch 'obstacle'"});
 }
 
+// A shaft boss (wall patch `obstacle`, x in [0, 0.6]) ending inside the
+// disk's thickness: within the hub radius it is where the propeller sits,
+// wider than the hub it cuts the loaded annulus.
+TEST(ActuatorDiskErrors, BossInsideTheHubIsAllowed) {
+  BoxMeshOptions mo;
+  mo.min = Vector3(-1, -1, -1);
+  mo.max = Vector3(1, 1, 1);
+  mo.cells = {20, 20, 20};
+  mo.kinds.fill(PatchKind::kPatch);
+  mo.obstacle_min = {10, 9, 9};  // y, z in [-0.1, 0.1]: face centres at r <= 0.112
+  mo.obstacle_max = {16, 11, 11};
+  ActuatorDiskOptions o;
+  o.diameter = 1.2;
+  o.thickness = 0.1;
+  o.hub_ratio = 0.3;  // r_hub = 0.18
+  o.centre = Vector3(-0.02, 0.0, 0.0);  // x in [-0.07, 0.03]: the boss end is inside
+  EXPECT_NO_THROW(ActuatorDisk(MakeBoxMesh(mo), o));
+  mo.obstacle_min = {10, 8, 8};  // y, z in [-0.2, 0.2]: face centres out to r 0.21
+  mo.obstacle_max = {16, 12, 12};
+  ExpectDiskError(MakeBoxMesh(mo), o, {"touches wall patch 'obstacle'", "outside the hub radius"});
+}
+
 TEST(ActuatorDiskErrors, CellNextToAWall) {
   BoxMeshOptions mo;
   mo.min = Vector3(-1, -1, -1);
