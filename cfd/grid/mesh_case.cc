@@ -222,10 +222,21 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
   }
   if (auto w = mesh.Find("waves")) ParseWaves(*w, c);
   if (auto f = mesh.Find("family")) {
-    f->ExpectKeys({"ratio"});
+    f->ExpectKeys({"ratio", "layers"});
     c.family_ratio = Number(*f, "ratio", c.family_ratio, 1.0);
     if (c.family_ratio < 1.1 || c.family_ratio > 4.0)
       (*f)["ratio"].Fail("a refinement ratio in [1.1, 4]");
+    if (auto l = f->Find("layers")) {
+      const std::string v = l->As<std::string>();
+      if (v == "similar") {
+        c.family_layers = FamilyLayers::kSimilar;
+      } else if (v == "first_layer") {
+        c.family_layers = FamilyLayers::kSameFirstLayer;
+      } else {
+        l->Fail("'similar' (grid 1's layer count and relative thickness) or 'first_layer' (grid 1's first-layer "
+                "height, the layer count from snappy.layers on each grid)");
+      }
+    }
   }
 
   const ConfigNode output = root["output"];
@@ -346,11 +357,13 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
       SnappyOptions o = c.snappy;
       o.base_cells_per_length =
           std::max(2, static_cast<int>(std::lround(c.snappy.base_cells_per_length / coarsen)));
-      // The coarser grids keep grid 1's layers (count and thickness relative
-      // to the cells), so the family stays geometrically similar: the
-      // first-layer y+ grows with the cells, as in the structured family.
-      o.layers = family_layers;
-      o.final_layer_ratio = family_final_ratio;
+      if (c.family_layers == FamilyLayers::kSimilar) {
+        // The coarser grids keep grid 1's layers (count and thickness
+        // relative to the cells), so the family stays geometrically similar:
+        // the first-layer y+ grows with the cells, as in the structured family.
+        o.layers = family_layers;
+        o.final_layer_ratio = family_final_ratio;
+      }  // else every grid sizes its layers from y_plus: the same first layer, more layers on coarser grids
       SnappyRun run;
       mesh = std::make_unique<Mesh>(RunSnappy(surface, o, s.directory, &run));
       family_layers = run.layers;

@@ -16,7 +16,7 @@
 //     structured: {cells_hull: 60, ...}   # HullGridOptions
 //     snappy: {base_cells_per_length: 10, hull_level: 3, ...}   # SnappyOptions
 //     waves: {froude: 0.316, cells_per_wavelength: 16}   # optional; Fn on the hull length
-//     family: {ratio: 1.41421356}
+//     family: {ratio: 1.41421356, layers: similar}   # or first_layer (snappy)
 //   output:
 //     directory: grids/wigley   # relative to the case file
 //     vtu: true
@@ -38,6 +38,7 @@
 namespace kelvin::cfd {
 
 enum class MeshMethod { kStructured, kSnappy };
+enum class FamilyLayers { kSimilar, kSameFirstLayer };
 
 struct MeshCase {
   std::string source;  // case file, for messages
@@ -57,6 +58,12 @@ struct MeshCase {
   HullGridOptions structured;  // domain, reynolds and y_plus filled in
   SnappyOptions snappy;        // domain, reynolds and y_plus filled in
   double family_ratio = 1.4142135623730951;
+  // snappy families: kSimilar keeps grid 1's layer count and thickness
+  // relative to the cells (the first-layer y+ grows with the cells);
+  // kSameFirstLayer sizes each grid's layers from y_plus as grid 1's (the
+  // same first layer and wall treatment on every grid, more layers on the
+  // coarser ones), so the wall function's y+ does not change with the grid.
+  FamilyLayers family_layers = FamilyLayers::kSimilar;
   std::filesystem::path output_directory;
   bool write_vtu = true;
 };

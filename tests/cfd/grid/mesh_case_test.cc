@@ -116,6 +116,11 @@ TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
   EXPECT_THAT(
       ErrorOf([] { Parse(Edit("ratio: 1.41421356", "ratio: 1.05")); }),
       HasSubstr("key 'mesh.family.ratio' = '1.05': expected a refinement ratio in [1.1, 4]"));
+  EXPECT_THAT(ErrorOf([] { Parse(Edit("ratio: 1.41421356", "ratio: 1.41421356, layers: same")); }),
+              HasSubstr("key 'mesh.family.layers' = 'same': expected 'similar'"));
+  EXPECT_EQ(Parse(Edit("ratio: 1.41421356", "ratio: 1.41421356, layers: first_layer")).family_layers,
+            FamilyLayers::kSameFirstLayer);
+  EXPECT_EQ(Parse(kWigley).family_layers, FamilyLayers::kSimilar);
   EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  y_plus: 1.0\n  waves: {froude: -0.3}")); }),
               HasSubstr("key 'mesh.waves.froude' = '-0.3': expected a positive number"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  y_plus: 1.0\n  waves: {froude: 0.3, cells: 12}")); }),
