@@ -15,6 +15,7 @@
 // unless the flooded bridge completed with finite states, every reason's
 // count lies within what was sent less what was lost, the flood reached its
 // rate and the pacing met the bridge_pacing limits.
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <atomic>
@@ -202,35 +203,17 @@ int main(int argc, char** argv) {
   double seconds = 60, rate = 50, flood_rate = 10000, quiet_seconds = -1;
   std::string ship_file = "data/ships/kvlcc2.yaml", markdown;
   bool check = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "bridge_flood_bench: %s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--seconds") {
-      seconds = std::stod(next());
-    } else if (a == "--rate") {
-      rate = std::stod(next());
-    } else if (a == "--flood-rate") {
-      flood_rate = std::stod(next());
-    } else if (a == "--quiet-seconds") {
-      quiet_seconds = std::stod(next());
-    } else if (a == "--ship") {
-      ship_file = next();
-    } else if (a == "--write") {
-      markdown = next();
-    } else if (a == "--check") {
-      check = true;
-    } else {
-      std::fprintf(stderr, "bridge_flood_bench: unknown argument '%s'\n", a.c_str());
-      return 2;
-    }
-  }
-  if (quiet_seconds < 0) quiet_seconds = seconds;
+  CLI::App app{"The bridge under a helm flood over udpm:// loopback, then the same bridge without it "
+               "(BENCHMARKS.md bridge_flood)", "bridge_flood_bench"};
+  app.add_option("--seconds", seconds, "Length of the flooded run (s)")->check(CLI::PositiveNumber);
+  app.add_option("--rate", rate, "State rate of the bridge (Hz)")->check(CLI::PositiveNumber);
+  app.add_option("--flood-rate", flood_rate, "Helm messages per second")->check(CLI::PositiveNumber);
+  app.add_option("--quiet-seconds", quiet_seconds, "Length of the run without the flood (s; 0: none; default: --seconds)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--ship", ship_file, "Ship file")->check(CLI::ExistingFile);
+  app.add_option("--write", markdown, "Replace the bridge_flood section of this file (e.g. BENCHMARKS.md)");
+  app.add_flag("--check", check, "Exit 1 unless the counts, the flood rate and the pacing limits hold");
+  CLI11_PARSE(app, argc, argv);
   const auto ship = kelvin::sim::LoadShip(ship_file);
   double load_start = 0, load_end = 0;
   getloadavg(&load_start, 1);

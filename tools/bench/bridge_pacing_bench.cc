@@ -14,6 +14,7 @@
 // --write replaces the bridge_pacing section of that file (atomically);
 // --check exits 1 unless the bridge meets the acceptance limits: mean period
 // error < 0.1 ms, p99 jitter < 2 ms, drift over the run < 2 ms.
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -193,30 +194,14 @@ int main(int argc, char** argv) {
   double seconds = 60, rate = 50;
   std::string ship_file = "data/ships/kvlcc2.yaml", markdown;
   bool check = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "bridge_pacing_bench: %s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--seconds") {
-      seconds = std::stod(next());
-    } else if (a == "--rate") {
-      rate = std::stod(next());
-    } else if (a == "--ship") {
-      ship_file = next();
-    } else if (a == "--write") {
-      markdown = next();
-    } else if (a == "--check") {
-      check = true;
-    } else {
-      std::fprintf(stderr, "bridge_pacing_bench: unknown argument '%s'\n", a.c_str());
-      return 2;
-    }
-  }
+  CLI::App app{"Real-time pacing of the bridge: plain, SCHED_FIFO, the naive peer and the display "
+               "(BENCHMARKS.md bridge_pacing)", "bridge_pacing_bench"};
+  app.add_option("--seconds", seconds, "Length of each run (s)")->check(CLI::PositiveNumber);
+  app.add_option("--rate", rate, "State rate of the bridge (Hz)")->check(CLI::PositiveNumber);
+  app.add_option("--ship", ship_file, "Ship file")->check(CLI::ExistingFile);
+  app.add_option("--write", markdown, "Replace the bridge_pacing section of this file (e.g. BENCHMARKS.md)");
+  app.add_flag("--check", check, "Exit 1 unless the pacing limits hold (plain and with the display)");
+  CLI11_PARSE(app, argc, argv);
   const auto ship = kelvin::sim::LoadShip(ship_file);
   double load_start = 0, load_end = 0;
   getloadavg(&load_start, 1);
