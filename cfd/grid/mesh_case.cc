@@ -236,6 +236,10 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
         l->Fail("'similar' (grid 1's layer count and relative thickness) or 'first_layer' (grid 1's first-layer "
                 "height, the layer count from snappy.layers on each grid)");
       }
+      if (c.method != MeshMethod::kSnappy) {
+        l->Fail("no family.layers with mesh.method 'structured' (its family always scales the layers with the "
+                "cells; 'similar' and 'first_layer' choose between the snappy path's two)");
+      }
     }
   }
 

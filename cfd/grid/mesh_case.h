@@ -61,8 +61,9 @@ struct MeshCase {
   // snappy families: kSimilar keeps grid 1's layer count and thickness
   // relative to the cells (the first-layer y+ grows with the cells);
   // kSameFirstLayer sizes each grid's layers from y_plus as grid 1's (the
-  // same first layer and wall treatment on every grid, more layers on the
-  // coarser ones), so the wall function's y+ does not change with the grid.
+  // same first-layer height on every grid, more layers on the coarser
+  // ones); the y+ still rises on the coarser grids where snappyHexMesh
+  // keeps fewer of the layers.
   FamilyLayers family_layers = FamilyLayers::kSimilar;
   std::filesystem::path output_directory;
   bool write_vtu = true;

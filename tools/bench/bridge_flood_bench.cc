@@ -214,6 +214,7 @@ int main(int argc, char** argv) {
   app.add_option("--write", markdown, "Replace the bridge_flood section of this file (e.g. BENCHMARKS.md)");
   app.add_flag("--check", check, "Exit 1 unless the counts, the flood rate and the pacing limits hold");
   CLI11_PARSE(app, argc, argv);
+  if (quiet_seconds < 0) quiet_seconds = seconds;
   const auto ship = kelvin::sim::LoadShip(ship_file);
   double load_start = 0, load_end = 0;
   getloadavg(&load_start, 1);

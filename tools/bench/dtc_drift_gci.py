@@ -76,6 +76,13 @@ def family_h(grids):
     return h
 
 
+def family_source(grids):
+    """The mesh case the family was built from, as family.txt's header names it."""
+    with open(os.path.join(grids, "family.txt")) as f:
+        m = re.search(r"grid family of (\S+)", f.readline())
+    return m.group(1) if m else "data/cases/mesh/dtc_snappy.yaml"
+
+
 def run(cmd, log):
     env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
     with open(log, "w") as f:
@@ -174,6 +181,8 @@ def main():
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--grid", type=int, action="append", help="run only this grid (repeatable); the table needs all")
     ap.add_argument("--write", help="replace the section in this file (e.g. BENCHMARKS.md)")
+    ap.add_argument("--section", default=NAME,
+                    help=f"the BENCHMARKS.md section to write (default {NAME}; another family gets its own)")
     a = ap.parse_args()
 
     grids = a.grid or [3, 2, 1]
@@ -200,11 +209,11 @@ def main():
     out = report["outputs"]
     h = {r["level"]: r["h"] for r in report["grids"]}
     lines = [
-        "## DTC static drift on three grids, with GCI (issue #25, acceptance 3)\n",
+        f"## DTC static drift on three grids of `{family_source(a.grids)}`, with GCI (issue #25, acceptance 3)\n",
         f"Run by `tools/bench/dtc_drift_gci.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC (2 shared "
         "cores). The campaign `data/cases/captive_cfd/dtc_campaign.yaml` (DTC model 1:59.407 at 1.668 m/s, fixed "
         "at the design waterline, k-omega SST with wall functions, the linearized free surface, the grid moving "
-        "with the hull) on each grid of `data/cases/mesh/dtc_snappy.yaml --family 3`, the time step in proportion to h "
+        f"with the hull) on each grid of `{family_source(a.grids)} --family 3`, the time step in proportion to h "
         "(the same Courant number on every grid; 0.1 s on grid 3). Each drift run ends when "
         "the ship-axes loads change by less than the campaign's tolerance over its window; the values are the "
         "means from the settling time on. Primes: X' = X / (rho/2 U^2 Lpp d), N' = N / (rho/2 U^2 Lpp^2 d).\n",
@@ -227,7 +236,7 @@ def main():
     se = {n: der[1][n][1] for n in ("Y_v", "N_v")}
     lines += ["", f"Grid 1's fit standard errors (kelvin identify): Y_v {se['Y_v']:.2g}, N_v {se['N_v']:.2g}.\n"]
     lines += fixed_against_settled(a.kelvin, os.path.join(a.work, "grid1"))
-    write_or_print(a.write, NAME, "\n".join(lines))
+    write_or_print(a.write, a.section, "\n".join(lines))
 
 
 if __name__ == "__main__":

@@ -75,6 +75,13 @@ TEST(MeshCaseTest, ShippedCaseFilesParse) {
   EXPECT_NEAR(d.reynolds, 1.668 * 5.976 / 1.09e-6, 1e-6 * d.reynolds);
   EXPECT_EQ(d.snappy.hull_level, 5);
   EXPECT_EQ(d.snappy.near_level, 3);
+  EXPECT_EQ(d.family_layers, FamilyLayers::kSimilar);
+  // Its first-layer family: the same grid 1, layers sized from y_plus on every grid.
+  const MeshCase fl = LoadMeshCase(SourceDir() / "data" / "cases" / "mesh" / "dtc_snappy_first_layer.yaml");
+  EXPECT_EQ(fl.family_layers, FamilyLayers::kSameFirstLayer);
+  EXPECT_EQ(fl.snappy.base_cells_per_length, d.snappy.base_cells_per_length);
+  EXPECT_EQ(fl.snappy.layers, d.snappy.layers);
+  EXPECT_DOUBLE_EQ(fl.y_plus, d.y_plus);
 }
 
 TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
@@ -118,8 +125,9 @@ TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
       HasSubstr("key 'mesh.family.ratio' = '1.05': expected a refinement ratio in [1.1, 4]"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("ratio: 1.41421356", "ratio: 1.41421356, layers: same")); }),
               HasSubstr("key 'mesh.family.layers' = 'same': expected 'similar'"));
-  EXPECT_EQ(Parse(Edit("ratio: 1.41421356", "ratio: 1.41421356, layers: first_layer")).family_layers,
-            FamilyLayers::kSameFirstLayer);
+  EXPECT_THAT(ErrorOf([] { Parse(Edit("ratio: 1.41421356", "ratio: 1.41421356, layers: first_layer")); }),
+              HasSubstr("key 'mesh.family.layers' = 'first_layer': expected no family.layers with mesh.method "
+                        "'structured'"));
   EXPECT_EQ(Parse(kWigley).family_layers, FamilyLayers::kSimilar);
   EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  y_plus: 1.0\n  waves: {froude: -0.3}")); }),
               HasSubstr("key 'mesh.waves.froude' = '-0.3': expected a positive number"));
