@@ -5,12 +5,14 @@ its execution count or its share of the time budget, and writes the
 BENCHMARKS.md section `fuzz` (executions, exec/s, crashes, leaks, UB reports).
 
     cmake --preset fuzz && cmake --build --preset fuzz
-    nice -n 10 tools/bench/fuzz_campaign.py --build build/fuzz --budget 6000 --write BENCHMARKS.md
+    nice -n 10 tools/bench/fuzz_campaign.py --build build/fuzz --budget 6000 --parallel 2 --write BENCHMARKS.md
 
 The acceptance counts (issue 24): 10 million executions for the hull, polyMesh
 and YAML readers, 1 million for the others. With --budget the targets run
 fastest first (rates from a short probe), so that as many as possible reach
-their count; each gets an equal share of the time left.
+their count; each gets an equal share of the core time left. --parallel N
+runs N targets at a time (one core each; libFuzzer's own -jobs would split
+one target's executions over processes that report separately).
 """
 
 import argparse
@@ -19,6 +21,7 @@ import os
 import re
 import subprocess
 import sys
+import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -78,15 +81,49 @@ def plan(build, targets, budget, work):
     return sorted(targets, key=lambda t: required_runs(t) / rates[t]), budget - (time.monotonic() - start)
 
 
-def section(results, build, budget):
+def run_campaign(build, order, budget, parallel, work):
+    """Runs the targets in order, `parallel` at a time; with a budget (s of wall time), each target starting
+    gets an equal share of the core time not yet promised to the targets running."""
+    deadline = time.monotonic() + budget
+    lock = threading.Lock()
+    pending, promised, results = list(order), {}, []
+
+    def worker():
+        while True:
+            with lock:
+                if not pending:
+                    return
+                t = pending.pop(0)
+                seconds = 10 ** 7
+                if budget:
+                    now = time.monotonic()
+                    left = parallel * (deadline - now) - sum(max(0.0, end - now) for end in promised.values())
+                    seconds = max(left / (len(pending) + 1), 1.0)
+                promised[t] = time.monotonic() + seconds
+            r = fuzz(build, t, required_runs(t), seconds, work)
+            with lock:
+                promised.pop(t)
+                results.append(r)
+                print(f"{t}: {r['runs']:,} executions, {r['exec_s']:,} exec/s, {r['crashes']} crashes, "
+                      f"{r['leaks']} leaks, {r['ub']} UB", flush=True)
+
+    threads = [threading.Thread(target=worker) for _ in range(parallel)]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join()
+    return results
+
+
+def section(results, build, budget, parallel):
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     total = sum(r["runs"] for r in results)
     met = sum(r["runs"] >= r["required"] for r in results)
     lines = [
         "## fuzz: the readers under libFuzzer (issue 24)\n",
-        f"`tools/bench/fuzz_campaign.py --build {build}" + (f" --budget {budget}`" if budget else "`") +
-        f" on {datetime.date.today()} at commit {commit}: clang 14, -O1, AddressSanitizer + UBSan "
-        "(every report aborts), one target at a time under `nice -n 10` on the shared 2-core machine, "
+        f"`tools/bench/fuzz_campaign.py --build {build}" + (f" --budget {budget}" if budget else "") +
+        f" --parallel {parallel}` on {datetime.date.today()} at commit {commit}: clang 14, -O1, AddressSanitizer + "
+        f"UBSan (every report aborts), {parallel} target(s) at a time, one core each, on the shared 2-core machine, "
         "from the seed corpora of tests/fuzz/seeds. The acceptance count is 10 million executions for the "
         "hull, polyMesh and YAML readers, 1 million for the others; with a time budget the fastest targets "
         "run first.\n",
@@ -111,6 +148,7 @@ def main():
     ap.add_argument("--build", default="build/fuzz", help="the fuzz build directory")
     ap.add_argument("--targets", nargs="*", help="default: every target of the build (fuzz/targets.txt)")
     ap.add_argument("--budget", type=float, default=0, help="total seconds; 0: each target runs to its count")
+    ap.add_argument("--parallel", type=int, default=1, help="targets at a time (one core each)")
     ap.add_argument("--work", help="corpora, crashes and logs (default <build>/fuzz/campaign)")
     ap.add_argument("--write", help="BENCHMARKS.md to update (default: print the section)")
     args = ap.parse_args()
@@ -120,15 +158,11 @@ def main():
     order, budget_left = targets, 0
     if budget:
         order, budget_left = plan(args.build, targets, budget, work)
-    results = []
-    for i, t in enumerate(order):
-        seconds = (budget_left - sum(r["seconds"] for r in results)) / (len(order) - i) if budget else 10 ** 7
-        r = fuzz(args.build, t, required_runs(t), max(seconds, 1), work)
-        results.append(r)
-        print(f"{t}: {r['runs']:,} executions, {r['exec_s']:,} exec/s, {r['crashes']} crashes, "
-              f"{r['leaks']} leaks, {r['ub']} UB", flush=True)
+    if args.parallel < 1:
+        ap.error(f"--parallel {args.parallel}: expected at least 1")
+    results = run_campaign(args.build, order, budget_left if budget else 0, args.parallel, work)
     write_or_print(args.write, NAME, section(sorted(results, key=lambda r: targets.index(r["target"])),
-                                             args.build, args.budget))
+                                             args.build, args.budget, args.parallel))
 
 
 if __name__ == "__main__":
