@@ -208,12 +208,13 @@ def main():
     report = kelvin_gci(a.kelvin, a.grids, a.work, quantities, settled)
     out = report["outputs"]
     h = {r["level"]: r["h"] for r in report["grids"]}
+    source = family_source(a.grids)
     lines = [
-        f"## DTC static drift on three grids of `{family_source(a.grids)}`, with GCI (issue #25, acceptance 3)\n",
+        f"## DTC static drift on three grids of `{source}`, with GCI (issue #25, acceptance 3)\n",
         f"Run by `tools/bench/dtc_drift_gci.py` on {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC (2 shared "
         "cores). The campaign `data/cases/captive_cfd/dtc_campaign.yaml` (DTC model 1:59.407 at 1.668 m/s, fixed "
         "at the design waterline, k-omega SST with wall functions, the linearized free surface, the grid moving "
-        f"with the hull) on each grid of `{family_source(a.grids)} --family 3`, the time step in proportion to h "
+        f"with the hull) on each grid of `{source} --family 3`, the time step in proportion to h "
         "(the same Courant number on every grid; 0.1 s on grid 3). Each drift run ends when "
         "the ship-axes loads change by less than the campaign's tolerance over its window; the values are the "
         "means from the settling time on. Primes: X' = X / (rho/2 U^2 Lpp d), N' = N / (rho/2 U^2 Lpp^2 d).\n",

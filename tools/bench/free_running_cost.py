@@ -97,15 +97,19 @@ def settled_text(settled):
     return "met" if settled else "NOT met (time.end)"
 
 
-def case_settings(case):
+def run_log(case):
+    with open(os.path.join(results_dir(case), "kelvin_run.log")) as f:
+        return f.read()
+
+
+def case_settings(case, log):
     """The case's grid (polyMesh path), its cell count and F_D (motion.external_load.X); refuses a run
     whose log names another cell count (a stale result under --reuse)."""
     with open(case_file(case)) as f:
         c = yaml.safe_load(f)
     mesh = os.path.normpath(os.path.join(CASES, c["mesh"]["poly_mesh"]))
     cells = cells_of(mesh)
-    with open(os.path.join(results_dir(case), "kelvin_run.log")) as f:
-        m = re.search(r"^cells (\d+)", f.read(20000), re.M)
+    m = re.search(r"^cells (\d+)", log, re.M)
     if not m or int(m.group(1)) != cells:
         sys.exit(f"{results_dir(case)}/kelvin_run.log: the run's mesh has "
                  f"{m.group(1) if m else 'an unknown number of'} cells, {case_file(case)} names a mesh of "
@@ -142,13 +146,10 @@ def alone_share(case, others):
     return 1.0 - covered / (end - start)
 
 
-def disk_cells_across(case):
-    path = os.path.join(results_dir(case), "kelvin_run.log")
-    if not os.path.exists(path):
-        return "unknown"
-    with open(path) as f:
-        m = re.search(r"only ([0-9.]+) cells across the disk diameter", f.read())
-    return float(m.group(1)) if m else None  # None: kelvin did not warn (10 or more)
+def disk_cells_across(log):
+    """The disk's cells across from kelvin's warning in the run log; None: it did not warn (10 or more)."""
+    m = re.search(r"only ([0-9.]+) cells across the disk diameter", log)
+    return float(m.group(1)) if m else None
 
 
 def tail_mean_X(h, seconds):
@@ -173,8 +174,9 @@ def main():
         run_all(a.kelvin, names, a.jobs)
     runs = {}
     for case in names:
-        grid, cells, F_D = case_settings(case)
-        runs[case] = {"h": history(case), "cells": cells, "grid": grid, "F_D": F_D}
+        log = run_log(case)
+        grid, cells, F_D = case_settings(case, log)
+        runs[case] = {"h": history(case), "cells": cells, "grid": grid, "F_D": F_D, "log": log}
         runs[case]["cpu"] = runs[case]["h"]["cpu"]
 
     towed = runs["dtc_towed"]["h"]
@@ -182,10 +184,8 @@ def main():
     X_mean, Xv_mean = tail_mean_X(towed, AVERAGE)
     R_T, R_F = -X_mean, -Xv_mean
     R_F0 = ittc57(U * L / NU) * 0.5 * RHO * S * U * U
-    across = disk_cells_across("dtc_self_propulsion")
-    if across == "unknown":
-        disk = "its disk's cells across are unknown (no run log)"
-    elif across is not None:
+    across = disk_cells_across(runs["dtc_self_propulsion"]["log"])
+    if across is not None:
         disk = f"its disk is {across:.1f} cells across (kelvin warns below 10)"
     else:
         disk = "its disk is at least 10 cells across"

@@ -152,14 +152,14 @@ def main():
     ap.add_argument("--work", help="corpora, crashes and logs (default <build>/fuzz/campaign)")
     ap.add_argument("--write", help="BENCHMARKS.md to update (default: print the section)")
     args = ap.parse_args()
+    if args.parallel < 1:
+        ap.error(f"--parallel {args.parallel}: expected at least 1")
     work = args.work or os.path.join(args.build, "fuzz", "campaign")
     targets = args.targets or open(os.path.join(args.build, "fuzz", "targets.txt")).read().split()
     budget = args.budget
     order, budget_left = targets, 0
     if budget:
         order, budget_left = plan(args.build, targets, budget, work)
-    if args.parallel < 1:
-        ap.error(f"--parallel {args.parallel}: expected at least 1")
     results = run_campaign(args.build, order, budget_left if budget else 0, args.parallel, work)
     write_or_print(args.write, NAME, section(sorted(results, key=lambda r: targets.index(r["target"])),
                                              args.build, args.budget, args.parallel))
