@@ -91,6 +91,9 @@ void RunOptions::Validate() const {
   if (output_interval < 0 || !std::isfinite(output_interval)) {
     throw ArgumentError(fmt::format("output interval {} s: expected a positive interval", output_interval));
   }
+  if (approach_rps < 0 || !std::isfinite(approach_rps)) {
+    throw ArgumentError(fmt::format("approach propeller speed {} 1/s: expected a positive rps", approach_rps));
+  }
 }
 
 ManeuverResult RunManeuver(const MmgModel<double>& model, const ManeuverSpec& spec, const RunOptions& options,
@@ -108,7 +111,7 @@ ManeuverResult RunManeuver(const MmgModel<double>& model, const ManeuverSpec& sp
     throw ArgumentError(fmt::format("ship '{}' gives no approach speed (conditions.approach_speed): pass --speed",
                                     ship.name));
   }
-  res.approach_rps = SelfPropulsionRps(model, res.approach_speed);
+  res.approach_rps = options.approach_rps > 0 ? options.approach_rps : SelfPropulsionRps(model, res.approach_speed);
 
   Simulator sim(model, options.integrator);
   sim.Reset(0.0, {0, 0, 0, res.approach_speed, 0, 0}, 0.0, res.approach_rps);

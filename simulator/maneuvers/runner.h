@@ -1,5 +1,6 @@
 // Runs an IMO maneuver in fast time from a steady approach: the ship starts
-// at the approach speed with the self-propulsion propeller speed (X = 0), the
+// at the approach speed with the self-propulsion propeller speed (X = 0) or a
+// given one (a reference run's, for kelvin check), the
 // controller executes the maneuver, and the metrics and IMO verdicts are read
 // off the recorded trajectory.
 #pragma once
@@ -17,6 +18,7 @@ namespace kelvin::sim {
 struct RunOptions {
   SimulatorOptions integrator;
   double approach_speed = 0;   // m/s; 0 = the ship's conditions.approach_speed
+  double approach_rps = 0;     // 1/s; 0 = self-propulsion (X = 0) at the approach speed
   double output_interval = 0;  // s between recorded samples; 0 = Lpp / U0 / 40
   void Validate() const;
 };

@@ -5,7 +5,7 @@ namespace kelvin::cli {
 std::vector<Command> AddCommands(CLI::App& app) {
   std::vector<Command> commands;
   // Pipeline order: geometry, captive tests, identification, simulation,
-  // real time.
+  // the surrogate check, real time.
   commands.push_back(AddHullCommand(app));
   commands.push_back(AddMeshCommand(app));
   commands.push_back(AddRunCommand(app));
@@ -13,6 +13,7 @@ std::vector<Command> AddCommands(CLI::App& app) {
   commands.push_back(AddCaptiveCommand(app));
   commands.push_back(AddIdentifyCommand(app));
   commands.push_back(AddSimulateCommand(app));
+  commands.push_back(AddCheckCommand(app));
   commands.push_back(AddBridgeCommand(app));
   commands.push_back(AddListenCommand(app));
   return commands;

@@ -16,6 +16,7 @@ struct Command {
 };
 
 Command AddSimulateCommand(CLI::App& app);
+Command AddCheckCommand(CLI::App& app);
 Command AddHullCommand(CLI::App& app);
 Command AddCaptiveCommand(CLI::App& app);
 Command AddBridgeCommand(CLI::App& app);

@@ -3,12 +3,15 @@
 #include <spdlog/spdlog.h>
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "simulator/mmg/derivative_set.h"
 #include "data/schema/errors.h"
 #include "simulator/maneuvers/runner.h"
+#include "simulator/mmg/surrogate.h"
 #include "tools/kelvin/commands.h"
 
 namespace kelvin::cli {
@@ -38,14 +41,10 @@ std::string FileStem(const std::string& ship, const std::string& maneuver) {
 
 void RunSimulate(const SimulateArgs& a) {
   sim::ShipParameters ship = sim::LoadShip(a.ship_file);
-  if (!a.derivatives.empty()) {
-    const sim::DerivativeSet set = sim::LoadDerivativeSet(a.derivatives);
-    ship.hull = set.hull;
-    ship.has_hull = true;
-    ship.Validate(a.derivatives);
-    spdlog::info("hull derivatives and added masses from {} ({})", a.derivatives, set.name);
-  }
-  sim::RequireManeuveringModel(ship, a.ship_file);
+  std::optional<sim::DerivativeSet> set;
+  if (!a.derivatives.empty()) set = sim::LoadDerivativeSet(a.derivatives);
+  ship = sim::SurrogateShip(std::move(ship), a.ship_file, set ? &*set : nullptr);
+  if (set) spdlog::info("hull derivatives and added masses from {} ({})", a.derivatives, set->name);
   if (a.scale == "full") {
     ship = sim::ScaleShip(ship, ship.scale, a.friction_correction);
     ship.scale_name = "full scale";

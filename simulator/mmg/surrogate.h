@@ -1,0 +1,18 @@
+// The surrogate: a ship file's MMG model with a derivative set's hull
+// derivatives and added masses in place of its hull section. kelvin simulate
+// --derivatives runs it, and kelvin check compares it with reference runs.
+#pragma once
+
+#include <string>
+
+#include "simulator/mmg/derivative_set.h"
+#include "simulator/mmg/ship_parameters.h"
+
+namespace kelvin::sim {
+
+// `ship` (loaded from `ship_file`) with the hull of `set` when there is one
+// (validated; a kelvin::ModelError names the set's file), required to be a
+// complete maneuvering model (a kelvin::ConfigError names `ship_file`).
+ShipParameters SurrogateShip(ShipParameters ship, const std::string& ship_file, const DerivativeSet* set);
+
+}  // namespace kelvin::sim
