@@ -12,7 +12,7 @@ namespace kelvin::cfd {
 namespace {
 
 constexpr std::array<const char*, 3> kDof = {"surge", "sway", "yaw"};
-constexpr int kPacked = 17;
+constexpr int kPacked = 20;
 
 std::array<double, 3> LoadArray(const PlanarLoad& l) { return {l.X, l.Y, l.N}; }
 
@@ -45,7 +45,7 @@ void FreeBodyOptions::Validate(const std::string& where) const {
 
 std::vector<double> FreeBodyState::Pack() const {
   std::vector<double> p = {time, static_cast<double>(steps)};
-  for (const auto* a : {&nu, &nu_old, &pos, &pos_old}) p.insert(p.end(), a->begin(), a->end());
+  for (const auto* a : {&nu, &nu_old, &pos, &pos_old, &placed}) p.insert(p.end(), a->begin(), a->end());
   p.insert(p.end(), {load.X, load.Y, load.N});
   return p;
 }
@@ -58,7 +58,7 @@ FreeBodyState FreeBodyState::Unpack(const std::vector<double>& p) {
   s.time = p[0];
   s.steps = static_cast<int>(p[1]);
   std::size_t k = 2;
-  for (auto* a : {&s.nu, &s.nu_old, &s.pos, &s.pos_old}) {
+  for (auto* a : {&s.nu, &s.nu_old, &s.pos, &s.pos_old, &s.placed}) {
     for (double& x : *a) x = p[k++];
   }
   s.load = {p[k], p[k + 1], p[k + 2]};
@@ -71,6 +71,7 @@ FreeBody::FreeBody(FreeBodyOptions options) : options_(std::move(options)) {
   accepted_.nu_old = accepted_.nu;
   accepted_.pos = {0.0, 0.0, options_.initial_heading};
   accepted_.pos_old = accepted_.pos;
+  accepted_.placed = accepted_.pos;
   SetState(accepted_);
 }
 
@@ -100,6 +101,7 @@ FreeBodyState FreeBody::state() const {
   s.nu_old = accepted_.nu;
   s.pos = pos_;
   s.pos_old = accepted_.pos;
+  s.placed = {placed_.x0, placed_.y0, placed_.psi};
   s.load = last_load_;
   return s;
 }
@@ -111,7 +113,7 @@ void FreeBody::SetState(const FreeBodyState& s) {
   nu_ = s.nu;
   pos_ = s.pos;
   last_load_ = s.load;
-  placed_ = MakePose(pos_);
+  placed_ = MakePose(s.placed);
   pose_ = placed_;
 }
 

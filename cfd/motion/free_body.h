@@ -89,6 +89,9 @@ struct FreeBodyState {
   int steps = 0;
   std::array<double, 3> nu{}, nu_old{};        // (u, v, r) at t_n and t_{n-1}
   std::array<double, 3> pos{}, pos_old{};      // (x0, y0, psi) at t_n and t_{n-1}
+  // Where the mesh is placed at t_n: the step's prediction, which lags pos by
+  // O(dt^2); a restart places the mesh there again (bit for bit).
+  std::array<double, 3> placed{};
   PlanarLoad load;                             // the last load on the body (explicit scheme)
   std::vector<double> Pack() const;
   static FreeBodyState Unpack(const std::vector<double>& packed);

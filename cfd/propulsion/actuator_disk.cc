@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "cfd/propulsion/cell_overlap.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -14,8 +15,6 @@ namespace kelvin::cfd {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr int kSamplesPerEdge = 4;  // stratified samples per tetrahedron: 4^3
-constexpr int kMaxSplits = 5;      // at most 8^5 sub-tetrahedra per tetrahedron of a cell
 
 [[noreturn]] void BadOption(const std::string& name, const std::string& key, const std::string& value,
                             const std::string& expected) {
@@ -64,105 +63,23 @@ double DistanceToDisk(const ActuatorDiskOptions& o, const Vector3& x, double gro
   return std::hypot(ea, er);
 }
 
-// Largest distance from the cell centre to its points.
-double CellRadius(const Mesh& mesh, int c) {
-  double radius = 0.0;
-  const auto offsets = mesh.cell_face_offsets();
-  for (int k = offsets[c]; k < offsets[c + 1]; ++k) {
-    for (int p : mesh.face(mesh.cell_faces()[k])) {
-      radius = std::max(radius, (mesh.points()[p] - mesh.cell_centres()[c]).norm());
-    }
-  }
-  return radius;
-}
-
-struct Integrals {
-  double volume = 0.0, axial = 0.0, tangential = 0.0;
-};
-
-// Samples the tetrahedron (p0, p1, p2, p3) at kSamplesPerEdge^3 stratified
-// points folded from the unit cube (Rocchini & Cignoni 2000, uniform).
-void SampleTetrahedron(const ActuatorDiskOptions& o, const Vector3& p0, const Vector3& p1, const Vector3& p2,
-                       const Vector3& p3, Integrals& out) {
-  const double R = 0.5 * o.diameter;
-  const double dV = std::abs((p1 - p0).dot((p2 - p0).cross(p3 - p0))) / 6.0 /
-                    (kSamplesPerEdge * kSamplesPerEdge * kSamplesPerEdge);
-  for (int i = 0; i < kSamplesPerEdge; ++i) {
-    for (int j = 0; j < kSamplesPerEdge; ++j) {
-      for (int k = 0; k < kSamplesPerEdge; ++k) {
-        double s = (i + 0.5) / kSamplesPerEdge, t = (j + 0.5) / kSamplesPerEdge, u = (k + 0.5) / kSamplesPerEdge;
-        if (s + t > 1.0) {
-          s = 1.0 - s;
-          t = 1.0 - t;
-        }
-        if (t + u > 1.0) {
-          const double tmp = u;
-          u = 1.0 - s - t;
-          t = 1.0 - tmp;
-        } else if (s + t + u > 1.0) {
-          const double tmp = u;
-          u = s + t + u - 1.0;
-          s = 1.0 - t - tmp;
-        }
-        const Vector3 x = p0 + s * (p1 - p0) + t * (p2 - p0) + u * (p3 - p0);
-        const DiskCoordinates dc = ToDisk(o, x);
-        const double r_prime = dc.radial.norm() / R;
-        if (std::abs(dc.a) > 0.5 * o.thickness || r_prime > 1.0 || r_prime < o.hub_ratio) continue;
-        const double g = AxialShape(o, r_prime);
-        out.volume += dV;
-        out.axial += g * dV;
-        out.tangential += g / std::max(r_prime, 1e-12) * dV;
-      }
-    }
-  }
-}
-
-// Samples a tetrahedron that may overlap the disk: split at the edge
-// midpoints into 8 (4 corners and the central octahedron cut along one
-// diagonal) until its edges are below a quarter of the disk thickness (and
-// of the annulus width), so that a disk thinner than the cells is not
-// aliased by the fixed sample lattice; tetrahedra clear of the disk are
-// skipped.
-void SampleTetrahedronAdaptive(const ActuatorDiskOptions& o, const Vector3& p0, const Vector3& p1, const Vector3& p2,
-                               const Vector3& p3, Integrals& out, int depth) {
-  const Vector3 centroid = 0.25 * (p0 + p1 + p2 + p3);
-  const double radius = std::max({(p0 - centroid).norm(), (p1 - centroid).norm(), (p2 - centroid).norm(),
-                                  (p3 - centroid).norm()});
-  if (DistanceToDisk(o, centroid, 0.0) > radius) return;
-  const double edge = std::max({(p1 - p0).norm(), (p2 - p0).norm(), (p3 - p0).norm(), (p2 - p1).norm(),
-                                (p3 - p1).norm(), (p3 - p2).norm()});
-  const double scale = std::min(o.thickness, 0.5 * o.diameter * (1.0 - o.hub_ratio));
-  if (depth >= kMaxSplits || edge <= 0.25 * scale) {
-    SampleTetrahedron(o, p0, p1, p2, p3, out);
-    return;
-  }
-  const Vector3 m01 = 0.5 * (p0 + p1), m02 = 0.5 * (p0 + p2), m03 = 0.5 * (p0 + p3);
-  const Vector3 m12 = 0.5 * (p1 + p2), m13 = 0.5 * (p1 + p3), m23 = 0.5 * (p2 + p3);
-  const int d = depth + 1;
-  SampleTetrahedronAdaptive(o, p0, m01, m02, m03, out, d);
-  SampleTetrahedronAdaptive(o, m01, p1, m12, m13, out, d);
-  SampleTetrahedronAdaptive(o, m02, m12, p2, m23, out, d);
-  SampleTetrahedronAdaptive(o, m03, m13, m23, p3, out, d);
-  SampleTetrahedronAdaptive(o, m02, m13, m01, m03, out, d);
-  SampleTetrahedronAdaptive(o, m02, m13, m03, m23, out, d);
-  SampleTetrahedronAdaptive(o, m02, m13, m23, m12, out, d);
-  SampleTetrahedronAdaptive(o, m02, m13, m12, m01, out, d);
-}
-
-Integrals SampleCell(const Mesh& mesh, const ActuatorDiskOptions& o, int c) {
-  Integrals in;
-  const auto offsets = mesh.cell_face_offsets();
-  const Vector3& xc = mesh.cell_centres()[c];
-  for (int k = offsets[c]; k < offsets[c + 1]; ++k) {
-    const int f = mesh.cell_faces()[k];
-    const auto pts = mesh.face(f);
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      const Vector3& a = mesh.points()[pts[i]];
-      const Vector3& b = mesh.points()[pts[(i + 1) % pts.size()]];
-      SampleTetrahedronAdaptive(o, xc, mesh.face_centres()[f], a, b, in, 0);
-    }
-  }
-  return in;
+// The annular cylinder as an overlap region: densities f_x ~ g(r') and
+// f_theta ~ g(r') / r'.
+OverlapRegion DiskRegion(const ActuatorDiskOptions& o) {
+  OverlapRegion region;
+  region.distance = [&o](const Vector3& x, double grow) { return DistanceToDisk(o, x, grow); };
+  region.sample = [&o](const Vector3& x, std::span<double> densities) {
+    const DiskCoordinates dc = ToDisk(o, x);
+    const double r_prime = dc.radial.norm() / (0.5 * o.diameter);
+    if (std::abs(dc.a) > 0.5 * o.thickness || r_prime > 1.0 || r_prime < o.hub_ratio) return false;
+    const double g = AxialShape(o, r_prime);
+    densities[0] = g;
+    densities[1] = g / std::max(r_prime, 1e-12);
+    return true;
+  };
+  region.n_densities = 2;
+  region.feature = std::min(o.thickness, 0.5 * o.diameter * (1.0 - o.hub_ratio));
+  return region;
 }
 
 }  // namespace
@@ -203,12 +120,8 @@ ActuatorDisk::ActuatorDisk(const Mesh& mesh, ActuatorDiskOptions options)
 
 std::vector<ActuatorDisk::CellLoad> ActuatorDisk::SampleCells(const Mesh& mesh) const {
   std::vector<CellLoad> loads;
-  for (int c = 0; c < mesh.n_cells(); ++c) {
-    const double radius = CellRadius(mesh, c);
-    if (DistanceToDisk(options_, mesh.cell_centres()[c], 0.0) > radius) continue;
-    const Integrals in = SampleCell(mesh, options_, c);
-    if (in.volume <= 0.0) continue;
-    loads.push_back({c, in.volume / mesh.cell_volumes()[c], in.axial, in.tangential});
+  for (const CellOverlap& o : SampleOverlap(mesh, DiskRegion(options_))) {
+    loads.push_back({o.cell, o.fraction, o.integrals[0], o.integrals[1]});
   }
   return loads;
 }

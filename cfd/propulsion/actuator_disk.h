@@ -30,18 +30,11 @@
 // tangential force on a cell acts along e_theta = axis x r_hat at its centre.
 //
 // Cells. A cell belongs to the disk in proportion to the part of its volume
-// inside the cylinder r_h <= r <= R, |axial| <= thickness / 2: each cell
-// near the disk is split into the tetrahedra (cell centre, face centre, two
-// consecutive face points); a tetrahedron that may overlap the disk is
-// split at its edge midpoints into 8 until its edges are below a quarter
-// of the disk thickness (and of the annulus width; a disk thinner than the
-// cells is otherwise aliased by the sample lattice: the share of the
-// cylinder the cells held came out 0.74 to 1.21 on the Wigley's stern
-// cells), and each leaf is sampled at 4^3 stratified points (the
-// cube-to-tetrahedron fold of Rocchini & Cignoni 2000, which keeps the
-// sampling uniform). The cell's axial and tangential
-// loads are the sampled integrals of f_x and f_theta over its inside part,
-// so the disk's area and the radial distribution do not jump by whole
+// inside the cylinder r_h <= r <= R, |axial| <= thickness / 2
+// (cfd/propulsion/cell_overlap.h, refined to a quarter of the thickness and
+// of the annulus width). The cell's axial and tangential loads are the
+// sampled integrals of f_x and f_theta over its inside part, so the disk's
+// area and the radial distribution do not jump by whole
 // cells at its edge. The ratio of the discrete sum to the analytic integral
 // over the cylinder (discrete_to_analytic_*) is the discretization's own
 // error.

@@ -1,6 +1,8 @@
 #include "cfd/run/case_loader.h"
 
+#include "cfd/run/maneuver_pilot.h"
 #include "cfd/run/propeller_actuator.h"
+#include "cfd/run/rudder_actuator.h"
 
 #include <fmt/format.h>
 
@@ -384,8 +386,11 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   }
   ValidateAt(t, [&] { s.time.Validate(); });
   CheckRunSections(root, c);
-  // The propeller finds its cells on the body-fixed mesh (not placed yet).
+  // The propeller and the rudder find their cells on the body-fixed mesh (not
+  // placed yet); the rudder samples the flow behind the propeller.
   if (auto propeller = LoadPropellerActuator(c, root)) c.actuators.push_back(std::move(propeller));
+  if (auto rudder = LoadRudderActuator(c, root)) c.actuators.push_back(std::move(rudder));
+  c.maneuver = LoadManeuverPilot(root, c, s.output.directory);
   return c;
 }
 

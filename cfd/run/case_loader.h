@@ -20,6 +20,7 @@
 #include "cfd/motion/mesh_motion.h"
 #include "cfd/run/body_actuator.h"
 #include "cfd/run/free_running_loader.h"
+#include "cfd/run/maneuver_settings.h"
 #include "cfd/run/time_control.h"
 #include "cfd/solver/pimple_solver.h"
 #include "data/schema/config.h"
@@ -88,6 +89,7 @@ struct Case {
   std::vector<int> hull_patches;
   // What acts on the free body through the flow (`propeller:`).
   std::vector<std::unique_ptr<BodyActuator>> actuators;
+  std::optional<ManeuverPilotSettings> maneuver;  // flown by cfd/run/maneuver_pilot.h
   std::unique_ptr<PimpleSolver> solver;
   LinearizedFreeSurface* free_surface = nullptr;  // the pressure condition that owns eta, or null
   std::vector<int> force_patches;                 // mesh indices of output.forces

@@ -141,7 +141,7 @@ void ResistanceOptions::Validate() const {
 
 CaseSettings ReadCaseSettings(const ConfigNode& root, const fs::path& case_dir) {
   root.ExpectKeys({"mesh", "physics", "reference", "schemes", "solution", "time", "boundary", "output", "motion",
-                   "turbulence", "resistance", "propeller"});
+                   "turbulence", "resistance", "propeller", "rudder", "maneuver"});
   CaseSettings s;
   s.file = root.source();
   const ConfigNode ph = root["physics"];

@@ -9,7 +9,10 @@
 //   AfterOuterIteration inside a step, after each PIMPLE outer iteration (couplers)
 //   Diverged           after each step: a reason to stop as diverged (body speed)
 //   AfterStep          after each finite step, with the step's record
+//   Done               after AfterStep: the run has what it was for (a CFD
+//                      maneuver finished); it ends as completed
 //   BeforeCheckpoint   before the driver writes the solver state (own files first)
+//   AddCheckpointScalars/Arrays, RestoreScalars/Arrays  what a restart needs
 //   WriteHistory       into history.h5, beside the named columns
 //   Finish             at the end of a completed run: its report lines
 //
@@ -83,7 +86,11 @@ class Monitor {
   virtual void AfterOuterIteration(PimpleSolver& /*solver*/, int /*outer*/) {}
   virtual void AfterStep(const PimpleSolver& solver, const StepRecord& record, History& history) = 0;
   virtual void BeforeCheckpoint(const PimpleSolver& /*solver*/) {}
+  virtual bool Done() const { return false; }
   virtual void AddCheckpointScalars(CheckpointScalars& /*scalars*/) const {}
+  virtual void AddCheckpointArrays(CheckpointArrays& /*arrays*/) const {}
+  // On a restart, after RestoreScalars and the solver state.
+  virtual void RestoreArrays(const CheckpointArrays& /*arrays*/) {}
   virtual void WriteHistory(data::H5Writer& /*writer*/) const {}
   // Report lines of a completed run (each without a trailing newline).
   virtual std::vector<std::string> Finish(const PimpleSolver& /*solver*/) { return {}; }

@@ -75,6 +75,7 @@ class PropellerActuator final : public BodyActuator {
   std::vector<std::string> Finish() override;
 
   const PropellerState& last() const { return last_; }
+  const PropellerRunOptions& options() const { return options_; }
 
  private:
   // One step of the averaging window (the last average_time of the run).

@@ -11,6 +11,7 @@
 #include "cfd/run/captive_sampler.h"
 #include "cfd/run/free_running.h"
 #include "cfd/run/resistance_monitor.h"
+#include "cfd/run/maneuver_pilot.h"
 #include "cfd/run/standard_monitors.h"
 
 namespace kelvin::cfd {
@@ -24,6 +25,7 @@ std::vector<std::unique_ptr<Monitor>> MakeMonitors(const Case& c) {
   const CaseSettings& s = c.settings;
   std::vector<std::unique_ptr<Monitor>> m;
   if (c.free_body) m.push_back(std::make_unique<FreeRunningCoupler>(c));
+  if (c.maneuver) m.push_back(std::make_unique<ManeuverPilot>(c, *c.maneuver));
   m.push_back(std::make_unique<FieldOutput>(s.output.directory, s.output.vtu_interval));
   m.push_back(std::make_unique<TurbulenceReport>());
   if (s.reference.speed > 0.0 && !c.force_patches.empty()) m.push_back(std::make_unique<ForceCoefficients>(c));

@@ -187,7 +187,9 @@ void Loop::Start() {
   time_control_.Start(solver_, restarted, scalars, c_.settings.reference.velocity());
   if (restarted) {
     try {
-      time_control_.RestorePhase(scalars, ReadCheckpointArrays(options_.restart));
+      const CheckpointArrays arrays = ReadCheckpointArrays(options_.restart);
+      time_control_.RestorePhase(scalars, arrays);
+      for (Monitor* m : monitors_) m->RestoreArrays(arrays);
     } catch (const DataFileError& e) {
       throw DataFileError(fmt::format("{}: {}", options_.restart.string(), e.what()));
     }
@@ -221,7 +223,9 @@ void Loop::Checkpoint() {
   CheckpointScalars scalars = time_control_.CheckpointScalars();
   for (Monitor* m : monitors_) m->AddCheckpointScalars(scalars);
   try {
-    WriteCheckpoint(options_.checkpoint, solver_, scalars, time_control_.CheckpointArrays());
+    CheckpointArrays arrays = time_control_.CheckpointArrays();
+    for (Monitor* m : monitors_) m->AddCheckpointArrays(arrays);
+    WriteCheckpoint(options_.checkpoint, solver_, scalars, arrays);
     summary_.last_checkpoint = options_.checkpoint;
     last_checkpoint_step_ = solver_.step();
     WriteHistory();
@@ -279,7 +283,8 @@ RunDriverSummary Loop::Run() {
     history_.NewRow();
     core_.Fill(history_, *c_.mesh, record, c_.force_patches);
     for (Monitor* m : monitors_) m->AfterStep(solver_, record, history_);
-    const bool checkpointed = CheckpointDue(record.last);
+    const bool done = std::any_of(monitors_.begin(), monitors_.end(), [](const Monitor* m) { return m->Done(); });
+    const bool checkpointed = CheckpointDue(record.last || done);
     if (checkpointed) Checkpoint();
     if (const int signal = options_.stop_requested ? options_.stop_requested() : 0; signal != 0) {
       if (!checkpointed && !options_.checkpoint.empty()) Checkpoint();
@@ -293,7 +298,7 @@ RunDriverSummary Loop::Run() {
     }
     progress.Update(i + 1, fmt::format("step {} t={:.4g} Co={:.3g} U={:.2e} p={:.2e}", s.step, s.time,
                                        s.courant_max, s.initial_residual_U, s.initial_residual_p));
-    if (time_control_.settled()) break;
+    if (time_control_.settled() || done) break;
   }
   solver_.SetOuterIterationHook(nullptr);
   WriteHistory();

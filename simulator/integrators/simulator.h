@@ -10,6 +10,7 @@
 
 #include "simulator/integrators/actuators.h"
 #include "simulator/integrators/plant.h"
+#include "simulator/maneuvers/maneuver_plant.h"
 #include "simulator/mmg/mmg_model.h"
 
 namespace kelvin::sim {
@@ -31,7 +32,7 @@ struct SimulatorOptions {
   void Validate() const;  // throws kelvin::ArgumentError with the bad option
 };
 
-class Simulator {
+class Simulator final : public ManeuverPlant {
  public:
   // Integrates the MMG model (the usual case). Refers to `model`, which must
   // outlive the simulator.
@@ -39,7 +40,7 @@ class Simulator {
   Simulator(const MmgModel<double>&& model, const SimulatorOptions& options) = delete;  // would dangle
   // Integrates any plant (e.g. a LinearPlant in tests).
   Simulator(std::unique_ptr<const Plant> plant, const SimulatorOptions& options);
-  ~Simulator();
+  ~Simulator() override;
   Simulator(const Simulator&) = delete;
   Simulator& operator=(const Simulator&) = delete;
 
@@ -49,8 +50,8 @@ class Simulator {
   // Orders take effect from the current time; the rudder order is clamped to
   // the ship's maximum angle and the rps order to [0, rps_max], or [-rps_max,
   // rps_max] with reverse thrust (rps_max = infinity when the ship gives none).
-  void SetRudderOrder(double delta_order);
-  void SetRpsOrder(double n_order);
+  void SetRudderOrder(double delta_order) override;
+  void SetRpsOrder(double n_order) override;
 
   // Integrates to t_end (adaptive: exactly, stopping at every actuator kink;
   // fixed step: by whole steps, t_end - time() must be a multiple of the step
@@ -63,7 +64,9 @@ class Simulator {
   // One fixed step (fixed-step method only). Never allocates.
   void Step();
 
-  double time() const { return t_; }
+  double time() const override { return t_; }
+  double heading() const override { return y_[kPsi]; }
+  double surge_speed() const override { return y_[kU]; }
   const StateVector& state() const { return y_; }
   double rudder() const { return rudder_.PositionAt(t_); }
   double rudder_order() const { return rudder_.order(); }

@@ -140,9 +140,9 @@ ManeuverController::ManeuverController(const ManeuverSpec& spec, const ShipParam
   }
 }
 
-void ManeuverController::Start(Simulator& sim) {
+void ManeuverController::Start(ManeuverPlant& sim) {
   t0_ = sim.time();
-  psi0_ = sim.state()[kPsi];
+  psi0_ = sim.heading();
   phase_ = ManeuverPhase::kExecute;
   execute_times_ = {t0_};
   // Room for every execute, so that StepManeuver never allocates (real time).
@@ -171,7 +171,7 @@ std::optional<double> ManeuverController::NextHeadingEvent() const {
   return psi0_ + sign_ * spec_.heading;
 }
 
-void ManeuverController::OnHeadingEvent(Simulator& sim) {
+void ManeuverController::OnHeadingEvent(ManeuverPlant& sim) {
   if (spec_.kind != ManeuverSpec::Kind::kZigZag) return;
   sign_ = -sign_;
   sim.SetRudderOrder(sign_ * spec_.rudder);
@@ -181,7 +181,7 @@ void ManeuverController::OnHeadingEvent(Simulator& sim) {
 
 double ManeuverController::NextTimeEvent() const { return next_time_event_; }
 
-void ManeuverController::OnTimeEvent(Simulator& sim) {
+void ManeuverController::OnTimeEvent(ManeuverPlant& sim) {
   if (spec_.kind != ManeuverSpec::Kind::kSpiral) return;
   ++spiral_index_;
   if (spiral_index_ < spec_.spiral_rudders.size()) {
@@ -194,33 +194,67 @@ void ManeuverController::OnTimeEvent(Simulator& sim) {
   }
 }
 
-bool ManeuverController::Finished(const Simulator& sim) const {
+bool ManeuverController::Finished(const ManeuverPlant& sim) const {
   if (phase_ == ManeuverPhase::kFinished) return true;
   if (sim.time() >= time_limit_) return true;
-  const auto& s = sim.state();
   switch (spec_.kind) {
     case ManeuverSpec::Kind::kTurning:
       // Three half turns: 90 and 180 deg for advance and tactical diameter,
       // then a steady turn well established past 360 deg.
-      return spec_.side * (s[kPsi] - psi0_) >= 3.0 * M_PI;
+      return spec_.side * (sim.heading() - psi0_) >= 3.0 * M_PI;
     case ManeuverSpec::Kind::kZigZag:
       return reversals_ >= 4;
     case ManeuverSpec::Kind::kSpiral:
       return false;
     case ManeuverSpec::Kind::kStopping:
-      return s[kU] <= 0.0;
+      return sim.surge_speed() <= 0.0;
   }
   return true;
 }
 
-void StepManeuver(Simulator& sim, ManeuverController& controller) {
-  const double psi_before = sim.state()[kPsi];
-  sim.Step();
-  if (const auto h = controller.NextHeadingEvent()) {
-    const double a = psi_before - *h, b = sim.state()[kPsi] - *h;
-    if (a != 0.0 && a * b <= 0.0) controller.OnHeadingEvent(sim);
+namespace {
+constexpr int kPackedFixed = 11;
+}  // namespace
+
+std::vector<double> ManeuverController::Pack() const {
+  std::vector<double> p = {t0_, psi0_, time_limit_, static_cast<double>(phase_), static_cast<double>(reversals_),
+                           static_cast<double>(sign_), static_cast<double>(spiral_index_), next_time_event_,
+                           reverse_thrust_ ? 1.0 : 0.0, spec_.hold_time, static_cast<double>(execute_times_.size())};
+  p.insert(p.end(), execute_times_.begin(), execute_times_.end());
+  return p;
+}
+
+void ManeuverController::Unpack(std::span<const double> p) {
+  if (p.size() < kPackedFixed || p.size() != kPackedFixed + static_cast<std::size_t>(p[kPackedFixed - 1])) {
+    throw DataFileError(fmt::format("maneuver '{}': the saved controller state has {} numbers, which is not the state "
+                                    "of a maneuver controller",
+                                    spec_.ToString(), p.size()));
   }
-  if (sim.time() >= controller.NextTimeEvent() - 1e-9) controller.OnTimeEvent(sim);
+  t0_ = p[0];
+  psi0_ = p[1];
+  time_limit_ = p[2];
+  phase_ = static_cast<ManeuverPhase>(static_cast<int>(p[3]));
+  reversals_ = static_cast<int>(p[4]);
+  sign_ = static_cast<int>(p[5]);
+  spiral_index_ = static_cast<std::size_t>(p[6]);
+  next_time_event_ = p[7];
+  reverse_thrust_ = p[8] != 0.0;
+  spec_.hold_time = p[9];
+  execute_times_.assign(p.begin() + kPackedFixed, p.end());
+}
+
+void StepManeuver(Simulator& sim, ManeuverController& controller) {
+  const double psi_before = sim.heading();
+  sim.Step();
+  AfterManeuverStep(sim, controller, psi_before);
+}
+
+void AfterManeuverStep(ManeuverPlant& plant, ManeuverController& controller, double psi_before) {
+  if (const auto h = controller.NextHeadingEvent()) {
+    const double a = psi_before - *h, b = plant.heading() - *h;
+    if (a != 0.0 && a * b <= 0.0) controller.OnHeadingEvent(plant);
+  }
+  if (plant.time() >= controller.NextTimeEvent() - 1e-9) controller.OnTimeEvent(plant);
 }
 
 double SelfPropulsionRps(const MmgModel<double>& model, double U) {

@@ -1,15 +1,18 @@
 // IMO maneuvers as controllers that work with either integrator: a turning
 // circle, a zig-zag, a Dieudonne spiral and a stopping test. The same
-// controller runs in fast time (kelvin simulate) and in real time (kelvin
-// bridge), so both produce the same trajectory for the same integrator.
+// controller runs in fast time (kelvin simulate), in real time (kelvin
+// bridge) and in free-running CFD (cfd/run/maneuver_pilot.h): it drives a
+// ManeuverPlant, so all of them fly the same maneuver logic.
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "simulator/integrators/simulator.h"
+#include "simulator/maneuvers/maneuver_plant.h"
 
 namespace kelvin::sim {
 
@@ -39,20 +42,20 @@ class ManeuverController {
   ManeuverController(const ManeuverSpec& spec, const ShipParameters& ship, double approach_speed,
                      double approach_rps);
 
-  // Executes the first action at the simulator's current time (t0 of the
-  // maneuver): heading psi0 is taken from the simulator state.
-  void Start(Simulator& sim);
+  // Executes the first action at the plant's current time (t0 of the
+  // maneuver): heading psi0 is taken from the plant.
+  void Start(ManeuverPlant& plant);
   // The absolute heading at which the next action happens, if any (zig-zag
   // rudder reversals).
   std::optional<double> NextHeadingEvent() const;
   // Called when the heading event was reached: reverses the rudder.
-  void OnHeadingEvent(Simulator& sim);
+  void OnHeadingEvent(ManeuverPlant& plant);
   // Time-driven actions (spiral steps); returns the next time at which the
   // controller must be called, or +inf.
   double NextTimeEvent() const;
-  void OnTimeEvent(Simulator& sim);
+  void OnTimeEvent(ManeuverPlant& plant);
   // True when the maneuver has produced everything its metrics need.
-  bool Finished(const Simulator& sim) const;
+  bool Finished(const ManeuverPlant& plant) const;
 
   ManeuverPhase phase() const { return phase_; }
   const ManeuverSpec& spec() const { return spec_; }
@@ -62,6 +65,12 @@ class ManeuverController {
   const std::vector<double>& execute_times() const { return execute_times_; }
   // Suggested end time when nothing else stops the run.
   double time_limit() const { return time_limit_; }
+
+  // The controller's progress as numbers (a checkpoint of a CFD maneuver)
+  // and back; Unpack throws kelvin::DataFileError for a vector that is not
+  // a Pack of this maneuver.
+  std::vector<double> Pack() const;
+  void Unpack(std::span<const double> packed);
 
  private:
   ManeuverSpec spec_;
@@ -84,6 +93,9 @@ class ManeuverController {
 // heading or time event that the step reached. Used by both the fast-time
 // fixed-step runner and the real-time bridge, so they agree exactly.
 void StepManeuver(Simulator& sim, ManeuverController& controller);
+// After a step of any plant from heading psi_before: acts on the heading or
+// time events the step reached (the event check of StepManeuver).
+void AfterManeuverStep(ManeuverPlant& plant, ManeuverController& controller, double psi_before);
 
 // Self-propulsion propeller speed (1/s) at which X = 0 in straight motion at
 // speed U (rudder amidships). Throws kelvin::ModelError if no positive root.

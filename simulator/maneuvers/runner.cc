@@ -158,6 +158,13 @@ ManeuverResult RunManeuver(const MmgModel<double>& model, const ManeuverSpec& sp
   res.execute_times = ctrl.execute_times();
   res.integrator_steps = sim.steps_taken();
 
+  ComputeManeuverMetrics(res, ctrl, ship.limits.rudder_max, sim.time());
+  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return res;
+}
+
+void ComputeManeuverMetrics(ManeuverResult& res, const ManeuverController& ctrl, double max_rudder, double t_end) {
+  const ManeuverSpec& spec = res.spec;
   const double psi0 = ctrl.start_heading(), t0 = ctrl.start_time();
   switch (spec.kind) {
     case ManeuverSpec::Kind::kTurning: res.turning = ComputeTurning(res.trajectory, t0, psi0, spec.side); break;
@@ -165,14 +172,12 @@ ManeuverResult RunManeuver(const MmgModel<double>& model, const ManeuverSpec& sp
       res.zigzag = ComputeZigZag(res.trajectory, res.execute_times, psi0, spec.heading, spec.side);
       break;
     case ManeuverSpec::Kind::kSpiral:
-      res.spiral = ComputeSpiral(res.trajectory, res.execute_times, ctrl.spec().spiral_rudders, sim.time(), res.Lpp);
+      res.spiral = ComputeSpiral(res.trajectory, res.execute_times, ctrl.spec().spiral_rudders, t_end, res.Lpp);
       break;
     case ManeuverSpec::Kind::kStopping: res.stopping = ComputeStopping(res.trajectory, t0, psi0); break;
   }
   AddMetrics(res);
-  AddVerdicts(res, ship.limits.rudder_max);
-  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return res;
+  AddVerdicts(res, max_rudder);
 }
 
 void WriteManeuverResult(const ManeuverResult& r, const std::filesystem::path& path,

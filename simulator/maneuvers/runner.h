@@ -45,6 +45,12 @@ struct ManeuverResult {
 ManeuverResult RunManeuver(const MmgModel<double>& model, const ManeuverSpec& spec, const RunOptions& options,
                            Progress* progress = nullptr);
 
+// Fills the metrics, the flattened rows and the IMO verdicts of `res` from
+// its trajectory and execute times and the controller that flew it (any
+// plant: the simulator, or a free-running CFD run); t_end is the time the
+// run ended.
+void ComputeManeuverMetrics(ManeuverResult& res, const ManeuverController& ctrl, double max_rudder, double t_end);
+
 // Writes the result (trajectory, metrics, verdicts, run attributes) to an
 // HDF5 file atomically.
 void WriteManeuverResult(const ManeuverResult& result, const std::filesystem::path& path,

@@ -34,7 +34,7 @@ void Finite(const std::string& src, const std::string& key, double v) {
 
 void ReadRudder(const data::ConfigNode& r, RudderParameters& rp) {
   r.ExpectKeys({"A_R", "H_R", "t_R", "a_H", "x_H_prime", "x_R_prime", "gamma_R_minus", "gamma_R_plus",
-                "l_R_prime", "epsilon", "kappa", "f_alpha"});
+                "l_R_prime", "epsilon", "kappa", "f_alpha", "z_top"});
   rp.A_R = r.Get<double>("A_R");
   rp.H_R = r.Get<double>("H_R");
   rp.t_R = r.Get<double>("t_R");
@@ -47,7 +47,7 @@ void ReadRudder(const data::ConfigNode& r, RudderParameters& rp) {
   rp.epsilon = r.Get<double>("epsilon");
   rp.kappa = r.Get<double>("kappa");
   rp.f_alpha = r.Get<double>("f_alpha");
-
+  if (r.Has("z_top")) rp.z_top = r.Get<double>("z_top");
 }
 
 std::vector<double> Column(const data::ConfigNode& table, const char* key) {
@@ -124,6 +124,7 @@ void ShipParameters::ValidateRudder(const std::string& src) const {
   InRange(src, "rudder.t_R", rp.t_R, 0.0, 1.0);
   Positive(src, "rudder.epsilon", rp.epsilon);
   Positive(src, "rudder.f_alpha", rp.f_alpha);
+  if (rp.z_top && *rp.z_top < 0) Unphysical(src, "rudder.z_top", *rp.z_top, "a depth below the waterline (m, >= 0)");
   if (rp.gamma_R_minus < 0) Unphysical(src, "rudder.gamma_R_minus", rp.gamma_R_minus, "a non-negative value");
   if (rp.gamma_R_plus < 0) Unphysical(src, "rudder.gamma_R_plus", rp.gamma_R_plus, "a non-negative value");
 }
@@ -251,6 +252,7 @@ ShipParameters ScaleShip(const ShipParameters& ship, double lambda, bool frictio
   s.propeller.D_p *= lambda;
   s.rudder.A_R *= lambda * lambda;
   s.rudder.H_R *= lambda;
+  if (s.rudder.z_top) *s.rudder.z_top *= lambda;
   s.limits.rudder_rate /= sq;
   if (s.limits.rps_max) *s.limits.rps_max /= sq;
   s.limits.rps_rate /= lambda;

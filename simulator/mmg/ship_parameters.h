@@ -109,6 +109,7 @@ struct RudderParameters {
   double epsilon = 0;        // wake ratio (1 - w_R) / (1 - w_P)
   double kappa = 0;          // propeller race increase factor
   double f_alpha = 0;        // rudder lift gradient
+  std::optional<double> z_top;  // m, depth of the blade's top below the design waterline (the CFD rudder)
 };
 
 struct ActuatorLimits {

@@ -20,65 +20,18 @@
 #include "cfd/propulsion/propeller.h"
 #include "data/schema/errors.h"
 #include "tests/cfd/cfd_test_support.h"
+#include "tests/cfd/propulsion/stream_meshes.h"
 
 namespace kelvin::cfd {
 namespace {
 
 using ::testing::HasSubstr;
+using testing::StretchedCoordinates;
+using testing::TensorMesh;
 constexpr double kPi = std::numbers::pi;
 
 // ---------------------------------------------------------------------------
 // Meshes
-
-// Node coordinates: uniform cells of size h on [a, b], growing by `ratio`
-// per cell outward to lo and hi (the outermost stretched run scaled to end
-// exactly there).
-std::vector<double> StretchedCoordinates(double lo, double a, double b, double hi, double h, double ratio) {
-  auto run = [&](double length) {
-    std::vector<double> sizes;
-    double sum = 0.0, s = h;
-    while (sum < length - 1e-12) {
-      s *= ratio;
-      sizes.push_back(s);
-      sum += s;
-    }
-    for (double& v : sizes) v *= length / sum;
-    return sizes;
-  };
-  std::vector<double> x = {a};
-  const int n_core = static_cast<int>(std::lround((b - a) / h));
-  for (int i = 1; i <= n_core; ++i) x.push_back(a + (b - a) * i / n_core);
-  for (double s : run(hi - b)) x.push_back(x.back() + s);
-  x.back() = hi;
-  std::vector<double> left = {a};
-  for (double s : run(a - lo)) left.push_back(left.back() - s);
-  if (left.size() > 1) left.back() = lo;
-  std::vector<double> out(left.rbegin(), left.rend() - 1);
-  out.insert(out.end(), x.begin(), x.end());
-  return out;
-}
-
-// A box mesh with the given node coordinates per axis (the built-in
-// generator on the index lattice, its points then mapped).
-Mesh TensorMesh(const std::array<std::vector<double>, 3>& coords, const std::array<PatchKind, 6>& kinds) {
-  BoxMeshOptions mo;
-  for (int d = 0; d < 3; ++d) {
-    mo.cells[d] = static_cast<int>(coords[d].size()) - 1;
-    mo.max[d] = mo.cells[d];
-  }
-  mo.kinds = kinds;
-  const Mesh lattice = MakeBoxMesh(mo);
-  std::vector<Vector3> points;
-  for (const Vector3& p : lattice.points()) {
-    Vector3 q;
-    for (int d = 0; d < 3; ++d) q[d] = coords[d][static_cast<std::size_t>(std::lround(p[d]))];
-    points.push_back(q);
-  }
-  std::vector<std::vector<int>> faces;
-  for (auto f : lattice.faces()) faces.emplace_back(f.begin(), f.end());
-  return Mesh(std::move(points), std::move(faces), {lattice.owner().begin(), lattice.owner().end()},
-              {lattice.neighbour().begin(), lattice.neighbour().end()}, lattice.patches(), "stretched box");
-}
 
 // A uniform box [-1, 1]^3 with n cells per axis, walls on no side.
 Mesh UniformBox(int n) {
