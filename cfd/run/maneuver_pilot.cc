@@ -168,6 +168,7 @@ std::vector<std::string> ManeuverPilot::Finish(const PimpleSolver& /*solver*/) {
   }
   sim::ManeuverResult res;
   res.spec = settings_.spec;
+  res.source = "cfd";
   res.ship_name = ship_.name;
   res.Lpp = ship_.principal.Lpp;
   res.scale = ship_.scale;

@@ -48,7 +48,7 @@ std::unique_ptr<BodyActuator> LoadPropellerActuator(const Case& c, const ConfigN
   if (!root.Has("propeller")) return nullptr;
   const ConfigNode node = root["propeller"];
   if (!c.free_running) node.Fail("no propeller: section without motion: {kind: free} (the disk acts on a free body)");
-  node.ExpectKeys({"thickness", "distribution", "correction", "thrust_relaxation", "rate", "self_propulsion"});
+  node.ExpectKeys({"thickness", "distribution", "correction", "thrust_relaxation", "rate", "self_propulsion", "swirl"});
   const FreeRunningSettings& fr = *c.free_running;
   const std::string where = node.Where();
   PropellerOptions po;
@@ -57,6 +57,7 @@ std::unique_ptr<BodyActuator> LoadPropellerActuator(const Case& c, const ConfigN
                           {{"annular", PropellerOptions::InflowCorrection::kAnnularMomentum},
                            {"disk", PropellerOptions::InflowCorrection::kDiskMomentum}});
   po.thrust_relaxation = node.Get<double>("thrust_relaxation", 0.7);
+  po.apply_torque = node.Get<bool>("swirl", true);
   PropellerRunOptions ro;
   const ConfigNode rate = node["rate"];
   rate.ExpectKeys({"n", "ramp_time"});

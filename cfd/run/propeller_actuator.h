@@ -7,6 +7,7 @@
 //     distribution: hough_ordway # hough_ordway | uniform
 //     correction: annular        # annular | disk (momentum theory of the induced velocity)
 //     thrust_relaxation: 0.7     # T <- T + 0.7 (T_new - T) per outer iteration
+//     swirl: true                # apply the torque (false: thrust only, a symmetric wake)
 //     rate: {n: 10.0, ramp_time: 1.0}            # 1/s
 //     self_propulsion:           # instead of a fixed rate: n is controlled
 //       start_time: 2.0          # s

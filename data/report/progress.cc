@@ -36,6 +36,7 @@ double Progress::eta_seconds(double done) const {
 
 void Progress::Update(double done, const std::string& status) {
   if (!opt_.enabled || finished_) return;
+  done_ = done;
   if (elapsed_seconds() < opt_.delay_seconds) return;
   const double fraction = std::clamp(done / total_, 0.0, 1.0);
   if (terminal_) {
@@ -51,7 +52,8 @@ void Progress::Update(double done, const std::string& status) {
 
 void Progress::Finish(const std::string& status) {
   if (!opt_.enabled || finished_) return;
-  if (printed_ || elapsed_seconds() >= opt_.delay_seconds) Print(total_, status, true);
+  // A run that ended early (a steady criterion, a finished maneuver) reports what it did.
+  if (printed_ || elapsed_seconds() >= opt_.delay_seconds) Print(done_ >= 0 ? done_ : total_, status, true);
   finished_ = true;
 }
 

@@ -47,6 +47,7 @@ class Progress {
   std::chrono::steady_clock::time_point last_draw_;
   double next_plain_fraction_ = 0.0;
   bool finished_ = false;
+  double done_ = -1.0;  // the last Update's count (-1: none; Finish then reports the total)
   bool printed_ = false;
 };
 

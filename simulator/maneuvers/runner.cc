@@ -187,6 +187,8 @@ void WriteManeuverResult(const ManeuverResult& r, const std::filesystem::path& p
   out.SetAttribute("/", "ship", r.ship_name);
   out.SetAttribute("/", "maneuver", r.spec.ToString());
   out.SetAttribute("/", "integrator", integrator_name);
+  out.SetAttribute("/", "source", r.source);
+  out.SetAttribute("/", "scale", r.scale);
   out.SetAttribute("/", "Lpp", r.Lpp);
   out.SetAttribute("/", "approach_speed", r.approach_speed);
   out.SetAttribute("/", "approach_rps", r.approach_rps);

@@ -25,6 +25,7 @@ struct RunOptions {
 
 struct ManeuverResult {
   ManeuverSpec spec;
+  std::string source = "simulator";  // who flew it: simulator, surrogate or cfd (root attribute `source`)
   std::string ship_name;
   double Lpp = 0;
   double scale = 1;

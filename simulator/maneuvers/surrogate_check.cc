@@ -338,6 +338,7 @@ SurrogateCheck RunSurrogateCheck(const SurrogateCheckOptions& o) {
     run.approach_speed = f.result.approach_speed;
     run.approach_rps = f.result.approach_rps;
     mc.surrogate = RunManeuver(model, f.result.spec, run);
+    mc.surrogate.source = "surrogate";
     mc.self_propulsion_rps = SelfPropulsionRps(model, f.result.approach_speed);
     mc.reference = std::move(f);
     check.maneuvers.push_back(std::move(mc));
@@ -543,7 +544,6 @@ void WriteCheckReport(const SurrogateCheck& check, const fs::path& dir) {
     const fs::path path = SurrogateRunPath(check, i, dir);
     WriteManeuverResult(m.surrogate, path, check.integrator);
     data::H5Writer tag(path, data::H5Writer::Mode::kAppend);
-    tag.SetAttribute("/", "source", "surrogate");
     tag.SetAttribute("/", "derivative_set", check.derivatives_file);
     tag.SetAttribute("/", "reference", m.reference.path);
     tag.Commit();

@@ -18,6 +18,18 @@ std::string ReadAll(std::FILE* f) {
   return s;
 }
 
+TEST(ProgressTest, ARunThatEndsEarlyReportsWhatItDid) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  Progress p(2000, {.label = "kelvin run", .unit = "steps", .delay_seconds = 0.0, .stream = f});
+  for (int i = 1; i <= 994; ++i) p.Update(i);  // a maneuver finished at step 994 of 2000
+  p.Finish("done");
+  const std::string out = ReadAll(f);
+  std::fclose(f);
+  EXPECT_THAT(out, ::testing::HasSubstr("kelvin run: done 994 steps"));
+  EXPECT_THAT(out, ::testing::Not(::testing::HasSubstr("done 2000 steps")));
+}
+
 TEST(ProgressTest, PlainModePrintsOneLinePerTenthWhenNotATerminal) {
   std::FILE* f = std::tmpfile();
   ASSERT_NE(f, nullptr);
