@@ -20,7 +20,7 @@
 #include "cfd/propulsion/propeller.h"
 #include "data/schema/errors.h"
 #include "tests/cfd/cfd_test_support.h"
-#include "tests/cfd/propulsion/stream_meshes.h"
+#include "tests/cfd/propulsion/stream_support.h"
 
 namespace kelvin::cfd {
 namespace {
@@ -244,29 +244,7 @@ Mesh FamilyGrid(int k) {
 // Uniform inflow U at xmin, a fixed-pressure outflow at xmax, slip on the
 // sides; laminar, nu = 1e-4 (Re_D = 1e4 at U = 1).
 std::unique_ptr<PimpleSolver> StreamSolver(const Mesh& mesh, double U_inf) {
-  auto U = testing::MakeField<Vector3>("U", mesh, [U_inf](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
-    if (p.name == "xmin") return std::make_unique<FixedValue<Vector3>>(Vector3(U_inf, 0, 0));
-    if (p.name == "xmax") return std::make_unique<InletOutlet<Vector3>>(Vector3(0, 0, 0));
-    return std::make_unique<Slip>();
-  });
-  auto p = testing::MakeField<double>("p", mesh, [](const Patch& patch) -> std::unique_ptr<BoundaryCondition<double>> {
-    if (patch.name == "xmax") return std::make_unique<FixedValue<double>>(0.0);
-    return std::make_unique<ZeroGradient<double>>();
-  });
-  PhysicsOptions physics;
-  physics.nu = 1e-4;
-  SchemeOptions schemes;
-  schemes.time = TimeScheme::kEuler;
-  PimpleOptions pimple;
-  pimple.n_outer = 2;
-  pimple.relax_U = 0.8;
-  pimple.relax_p = 0.5;
-  pimple.momentum_solver.relative_tolerance = 1e-6;
-  pimple.pressure_solver.relative_tolerance = 1e-4;
-  pimple.pressure_final_relative_tolerance = 1e-6;
-  auto solver = std::make_unique<PimpleSolver>(mesh, physics, schemes, pimple, std::move(U), std::move(p));
-  for (Vector3& u : solver->U().values()) u = Vector3(U_inf, 0, 0);
-  return solver;
+  return testing::StreamSolver(mesh, Vector3(U_inf, 0, 0), "xmin", "xmax");
 }
 
 // Marches to a steady state (max cell change per step below tol U); the

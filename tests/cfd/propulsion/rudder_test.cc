@@ -15,7 +15,7 @@
 #include "cfd/mesh/box_mesh.h"
 #include "data/schema/errors.h"
 #include "tests/cfd/cfd_test_support.h"
-#include "tests/cfd/propulsion/stream_meshes.h"
+#include "tests/cfd/propulsion/stream_support.h"
 
 namespace kelvin::cfd {
 namespace {
@@ -48,40 +48,24 @@ Mesh StreamBox(double h, double ratio) {
                                 PatchKind::kSymmetry, PatchKind::kSymmetry});
 }
 
-// Inflow (-U, 0, 0) at xmax, outflow at xmin, slip elsewhere; laminar.
+// Inflow (-U, 0, 0) at xmax (from the rudder's ahead), outflow at xmin.
 std::unique_ptr<PimpleSolver> StreamSolver(const Mesh& mesh, double U_inf) {
-  auto U = testing::MakeField<Vector3>("U", mesh, [U_inf](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
-    if (p.name == "xmax") return std::make_unique<FixedValue<Vector3>>(Vector3(-U_inf, 0, 0));
-    if (p.name == "xmin") return std::make_unique<InletOutlet<Vector3>>(Vector3(0, 0, 0));
-    return std::make_unique<Slip>();
-  });
-  auto p = testing::MakeField<double>("p", mesh, [](const Patch& patch) -> std::unique_ptr<BoundaryCondition<double>> {
-    if (patch.name == "xmin") return std::make_unique<FixedValue<double>>(0.0);
-    return std::make_unique<ZeroGradient<double>>();
-  });
-  PhysicsOptions physics;
-  physics.nu = 1e-4;
-  SchemeOptions schemes;
-  schemes.time = TimeScheme::kEuler;
-  PimpleOptions pimple;
-  pimple.n_outer = 2;
-  pimple.relax_U = 0.8;
-  pimple.relax_p = 0.5;
-  pimple.momentum_solver.relative_tolerance = 1e-6;
-  pimple.pressure_solver.relative_tolerance = 1e-4;
-  pimple.pressure_final_relative_tolerance = 1e-6;
-  auto solver = std::make_unique<PimpleSolver>(mesh, physics, schemes, pimple, std::move(U), std::move(p));
-  for (Vector3& u : solver->U().values()) u = Vector3(-U_inf, 0, 0);
-  return solver;
+  return testing::StreamSolver(mesh, Vector3(-U_inf, 0, 0), "xmax", "xmin");
 }
 
-TEST(RudderLoads, BodyForceSumsToTheNormalForce) {
+// A plain box around the blade (no walls unless `zmax_wall`), n cells along x.
+Mesh BoxAroundTheBlade(int n, bool zmax_wall = false) {
   BoxMeshOptions mo;
   mo.min = Vector3(-0.3, -0.2, -0.4);
   mo.max = Vector3(0.5, 0.2, 0.0);
-  mo.cells = {32, 16, 16};
+  mo.cells = {n, n / 2, n / 2};
   mo.kinds.fill(PatchKind::kPatch);
-  const Mesh mesh = MakeBoxMesh(mo);
+  if (zmax_wall) mo.kinds[5] = PatchKind::kWall;  // a hull bottom on the blade's top
+  return MakeBoxMesh(mo);
+}
+
+TEST(RudderLoads, BodyForceSumsToTheNormalForce) {
+  const Mesh mesh = BoxAroundTheBlade(32);
   Rudder rudder(mesh, TestRudder());
   // The stratified sampling of the thin box (0.02 m in 0.025 m cells): its
   // volume within 1% (the force itself is normalized: exact).
@@ -110,16 +94,11 @@ TEST(RudderLoads, BodyForceSumsToTheNormalForce) {
 }
 
 TEST(RudderLoads, LiftCurveHasItsStallPlateau) {
-  BoxMeshOptions mo;
-  mo.min = Vector3(-0.3, -0.2, -0.4);
-  mo.max = Vector3(0.5, 0.2, 0.0);
-  mo.cells = {16, 8, 8};
-  mo.kinds.fill(PatchKind::kPatch);
   RudderOptions o = TestRudder();
   o.stall_angle = 30.0 * kDeg;
   o.lift_slope = 2.5;
   o.max_angle = 0.0;
-  const Rudder rudder(MakeBoxMesh(mo), o);
+  const Rudder rudder(BoxAroundTheBlade(16), o);
   EXPECT_DOUBLE_EQ(rudder.NormalForceCoefficient(10 * kDeg), 2.5 * std::sin(10 * kDeg));
   EXPECT_DOUBLE_EQ(rudder.NormalForceCoefficient(-30 * kDeg), -2.5 * 0.5);
   EXPECT_DOUBLE_EQ(rudder.NormalForceCoefficient(45 * kDeg), 2.5 * 0.5);
@@ -180,12 +159,7 @@ void ExpectRudderError(const Mesh& mesh, const RudderOptions& o, const std::vect
 }
 
 TEST(RudderErrors, OutsideTheMeshAndBadOptions) {
-  BoxMeshOptions mo;
-  mo.min = Vector3(-0.3, -0.2, -0.4);
-  mo.max = Vector3(0.5, 0.2, 0.0);
-  mo.cells = {16, 8, 8};
-  mo.kinds.fill(PatchKind::kPatch);
-  const Mesh mesh = MakeBoxMesh(mo);
+  const Mesh mesh = BoxAroundTheBlade(16);
   RudderOptions o = TestRudder();
   o.stock = Vector3(3.0, 0.0, 0.0);
   ExpectRudderError(mesh, o, {"test rudder.stock = (3, 0, 0)", "contains no cell", "inside the mesh"});
@@ -198,13 +172,7 @@ TEST(RudderErrors, OutsideTheMeshAndBadOptions) {
 }
 
 TEST(RudderErrors, BladeAgainstTheHull) {
-  BoxMeshOptions mo;
-  mo.min = Vector3(-0.3, -0.2, -0.4);
-  mo.max = Vector3(0.5, 0.2, 0.0);
-  mo.cells = {16, 8, 8};
-  mo.kinds.fill(PatchKind::kPatch);
-  mo.kinds[5] = PatchKind::kWall;  // zmax: a hull bottom on the blade's top
-  ExpectRudderError(MakeBoxMesh(mo), TestRudder(), {"touches wall patch 'zmax'", "clear of the hull"});
+  ExpectRudderError(BoxAroundTheBlade(16, true), TestRudder(), {"touches wall patch 'zmax'", "clear of the hull"});
 }
 
 }  // namespace
