@@ -10,15 +10,26 @@ namespace kelvin::data {
 
 namespace {
 
-std::size_t EditDistance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+// The edit distance of a and b if it is below `bound`, else `bound` (or more):
+// a candidate that cannot beat the best so far is given up early. `prev` and
+// `cur` are scratch rows, kept across candidates.
+std::size_t EditDistance(std::string_view a, std::string_view b, std::size_t bound, std::vector<std::size_t>& prev,
+                         std::vector<std::size_t>& cur) {
+  // The distance is at least the difference of the lengths.
+  if ((a.size() > b.size() ? a.size() - b.size() : b.size() - a.size()) >= bound) return bound;
+  prev.resize(b.size() + 1);
+  cur.resize(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
     cur[0] = i;
+    std::size_t row_min = cur[0];
     for (std::size_t j = 1; j <= b.size(); ++j) {
       const std::size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
       cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+      row_min = std::min(row_min, cur[j]);
     }
+    // No entry of a later row is below this row's minimum.
+    if (row_min >= bound) return bound;
     std::swap(prev, cur);
   }
   return prev[b.size()];
@@ -40,8 +51,9 @@ std::string KeyName(const YAML::Node& key, const std::string& source, const std:
 std::optional<std::string> ClosestMatch(std::string_view word, std::span<const std::string> candidates) {
   std::optional<std::string> best;
   std::size_t best_d = std::max<std::size_t>(2, word.size() / 3) + 1;
+  std::vector<std::size_t> prev, cur;
   for (const auto& c : candidates) {
-    const std::size_t d = EditDistance(word, c);
+    const std::size_t d = EditDistance(word, c, best_d, prev, cur);
     if (d < best_d) {
       best_d = d;
       best = c;
@@ -184,6 +196,17 @@ std::vector<std::string> ConfigNode::Keys() const {
 }
 
 void ConfigNode::ExpectKeys(std::initializer_list<std::string_view> valid) const {
+  // The list as strings only when a key is outside it (the error names them).
+  if (node_.IsMap()) {
+    bool all_valid = true;
+    for (const auto& kv : node_) {
+      if (std::find(valid.begin(), valid.end(), KeyName(kv.first, source_, path_)) == valid.end()) {
+        all_valid = false;
+        break;
+      }
+    }
+    if (all_valid) return;
+  }
   std::vector<std::string> v(valid.begin(), valid.end());
   ExpectKeys(std::span<const std::string>(v));
 }

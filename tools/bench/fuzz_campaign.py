@@ -5,22 +5,42 @@ its execution count or its share of the time budget, and writes the
 BENCHMARKS.md section `fuzz` (executions, exec/s, crashes, leaks, UB reports).
 
     cmake --preset fuzz && cmake --build --preset fuzz
-    nice -n 10 tools/bench/fuzz_campaign.py --build build/fuzz --budget 6000 --parallel 2 --write BENCHMARKS.md
+    nice -n 19 tools/bench/fuzz_campaign.py --build build/fuzz --skip-reached --fastest-first --write BENCHMARKS.md
 
 The acceptance counts (issue 24): 10 million executions for the hull, polyMesh
-and YAML readers, 1 million for the others. With --budget the targets run
-fastest first (rates from a short probe), so that as many as possible reach
-their count; each gets an equal share of the core time left. --parallel N
-runs N targets at a time (one core each; libFuzzer's own -jobs would split
-one target's executions over processes that report separately).
+and YAML readers, 1 million for the others. Each target's count must be
+reached by ONE libFuzzer invocation; the script never adds runs together.
+
+The campaign may span several sessions. Every finished target run is stored
+in <work>/results.json (next to the corpora, written atomically) with its
+date, the commit of HEAD and of the target's reader sources, and a digest of
+those sources; the BENCHMARKS section is rendered from every stored result,
+so each row may come from a different session. The reader sources of a target
+are what its fuzz binary is compiled from: the sources and headers of its
+objects (from ninja's dependency log of the fuzz build), inside this
+repository. --skip-reached runs only the targets without a stored run that
+reached its count on the reader sources as they are now (same digest).
+
+A new run replaces the stored one of its target, except that a run that did
+not reach its count never replaces one that did on the same reader sources.
+
+--budget (seconds of wall time) runs the targets fastest first (rates from a
+short probe) with an equal share each of the core time left; --until HH:MM
+(UTC) stops every run at that time (a stopped run is stored as not reached)
+and starts no target that its stored rate says cannot reach its count by then.
+--parallel N runs N targets at a time (one core each; libFuzzer's own -jobs
+would split one target's executions over processes that report separately).
 """
 
 import argparse
 import datetime
+import hashlib
+import json
 import os
 import re
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 
@@ -30,11 +50,167 @@ from pimple_vs_openfoam import write_or_print  # noqa: E402
 NAME = "fuzz"
 BIG = ("stl", "obj", "polymesh", "yaml")  # 10 million executions; the others 1 million
 PROBE_SECONDS = 5
+SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def required_runs(target):
     return 10_000_000 if any(k in target for k in BIG) else 1_000_000
 
+
+def git(*args):
+    return subprocess.run(["git", "-C", SOURCE, *args], capture_output=True, text=True).stdout.strip()
+
+
+# ---------------------------------------------------------------------------
+# The reader sources of a target.
+
+def ninja_query_inputs(build, node):
+    """Explicit and implicit inputs of a ninja node (not the order-only ones)."""
+    out = subprocess.run(["ninja", "-C", build, "-t", "query", node], capture_output=True, text=True).stdout
+    inputs, section = [], None
+    for line in out.splitlines():
+        s = line.strip()
+        if s.startswith("input:"):
+            section = "input"
+            continue
+        if s.endswith(":") and not s.startswith("|"):  # outputs:, validations:
+            section = None
+            continue
+        if section == "input" and s and not s.startswith("||"):
+            inputs.append(s[2:] if s.startswith("| ") else s)
+    return inputs
+
+
+def linked_sources(binary):
+    """The source files of the compile units linked into `binary` (from its debug information)."""
+    out = subprocess.run(["llvm-dwarfdump-14", "--debug-info", "--recurse-depth=0", binary],
+                         capture_output=True, text=True).stdout
+    names, in_cu = set(), False
+    for line in out.splitlines():
+        if "DW_TAG_compile_unit" in line:
+            in_cu = True
+        elif in_cu and "DW_AT_name" in line:
+            m = re.search(r'\("(.*)"\)', line)
+            if m:
+                names.add(os.path.realpath(m.group(1)))
+            in_cu = False
+    return names
+
+
+def reader_files(build, target):
+    """The repository files the target's binary is compiled from (sources and headers of the objects linked
+    into it, not those of the rest of a static library), sorted."""
+    exe = f"tests/fuzz/{target}_fuzzer"
+    objects, pending, seen = [], [exe], set()
+    while pending:
+        node = pending.pop()
+        if node in seen:
+            continue
+        seen.add(node)
+        for i in ninja_query_inputs(build, node):
+            if i.endswith(".o"):
+                objects.append(i)
+            elif i.endswith(".a") and not os.path.isabs(i):
+                pending.append(i)
+    linked = linked_sources(os.path.join(build, exe))
+    files = set()
+    if objects:
+        out = subprocess.run(["ninja", "-C", build, "-t", "deps", *objects], capture_output=True, text=True).stdout
+        build_abs = os.path.realpath(build)
+        blocks, deps = [], None
+        for line in out.splitlines():
+            if line.startswith("    "):
+                if deps is not None:
+                    deps.append(os.path.realpath(os.path.join(build, line.strip())))
+            elif line.strip():
+                deps = []
+                blocks.append(deps)
+        for deps in blocks:
+            # An object of a static library is linked only when something refers to it; without debug
+            # information (no compile units found) every object counts.
+            if linked and not any(d in linked for d in deps if d.endswith((".cc", ".cpp", ".c"))):
+                continue
+            for p in deps:
+                if p.startswith(SOURCE + os.sep) and not p.startswith(build_abs + os.sep):
+                    files.add(os.path.relpath(p, SOURCE))
+    return sorted(files)
+
+
+def reader_state(build, target):
+    """Digest, last commit and local edits of the target's reader sources."""
+    files = reader_files(build, target)
+    h = hashlib.sha256()
+    for f in files:
+        h.update(f.encode() + b"\0")
+        try:
+            with open(os.path.join(SOURCE, f), "rb") as fh:
+                h.update(hashlib.sha256(fh.read()).digest())
+        except OSError:
+            h.update(b"missing")
+    commit = git("log", "-1", "--format=%h", "--", *files) if files else ""
+    dirty = bool(git("status", "--porcelain", "--", *files)) if files else False
+    return {"reader_digest": h.hexdigest()[:16] if files else "", "reader_commit": commit,
+            "reader_dirty": dirty, "reader_files": len(files)}
+
+
+# ---------------------------------------------------------------------------
+# Stored results.
+
+def load_file(path):
+    """results.json: {"targets": {target: its stored run}, "notes": {target: what its row needs said}}."""
+    if not os.path.exists(path):
+        return {"targets": {}, "notes": {}}
+    with open(path) as f:
+        data = json.load(f)
+    data.setdefault("targets", {})
+    data.setdefault("notes", {})
+    return data
+
+
+def load_results(path):
+    return load_file(path)["targets"]
+
+
+def save_results(path, results=None, notes=None):
+    """Writes results.json atomically (a temporary file in the same directory, then a rename); what is not
+    given is kept as stored."""
+    data = load_file(path)
+    if results is not None:
+        data["targets"] = results
+    if notes is not None:
+        data["notes"] = notes
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=".results.", dir=os.path.dirname(os.path.abspath(path)))
+    try:
+        with os.fdopen(fd, "w") as f:
+            json.dump(data, f, indent=1, sort_keys=True)
+            f.write("\n")
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+def reached(r):
+    return r["runs"] >= r["required"]
+
+
+def store(path, lock, r):
+    """Stores a finished run, unless it did not reach its count and the stored one did on the same sources."""
+    with lock:
+        results = load_results(path)
+        old = results.get(r["target"])
+        if old and reached(old) and not reached(r) and old.get("reader_digest") == r["reader_digest"]:
+            print(f"{r['target']}: not stored (the stored run of {old['date']} reached its count)", flush=True)
+            return
+        results[r["target"]] = r
+        save_results(path, results)
+
+
+# ---------------------------------------------------------------------------
+# Running.
 
 def fuzz(build, target, runs, seconds, work):
     """Runs one target; returns its statistics and what went wrong."""
@@ -43,9 +219,9 @@ def fuzz(build, target, runs, seconds, work):
     artifacts = os.path.join(work, "artifacts", target)
     os.makedirs(corpus, exist_ok=True)
     os.makedirs(artifacts, exist_ok=True)
-    source = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    before = set(os.listdir(artifacts))
     env = dict(os.environ, UBSAN_OPTIONS="print_stacktrace=1", ASAN_OPTIONS="allocator_may_return_null=1",
-               LSAN_OPTIONS="suppressions=" + os.path.join(source, "tests/fuzz/lsan.supp"))
+               LSAN_OPTIONS="suppressions=" + os.path.join(SOURCE, "tests/fuzz/lsan.supp"))
     cmd = [os.path.join(build, "tests/fuzz", target + "_fuzzer"), f"-runs={runs}", f"-max_total_time={int(seconds)}",
            "-timeout=10", "-rss_limit_mb=2048", "-print_funcs=0", f"-artifact_prefix={artifacts}/", "-print_final_stats=1",
            corpus, os.path.join(fuzz_dir, "seeds", target)]
@@ -66,7 +242,7 @@ def fuzz(build, target, runs, seconds, work):
         "leaks": len(re.findall(r"ERROR: LeakSanitizer", log)),
         "ub": len(re.findall(r"runtime error:", log)),
         "crashes": int(p.returncode != 0 and not re.search(r"ERROR: LeakSanitizer|runtime error:", log)),
-        "artifacts": sorted(os.listdir(artifacts)),
+        "artifacts": sorted(set(os.listdir(artifacts)) - before),  # this run's
     }
 
 
@@ -81,11 +257,24 @@ def plan(build, targets, budget, work):
     return sorted(targets, key=lambda t: required_runs(t) / rates[t]), budget - (time.monotonic() - start)
 
 
-def run_campaign(build, order, budget, parallel, work):
+def fastest_first(build, targets, stored, work):
+    """Targets by their time to reach the count: the stored rate where there is one, else a short probe."""
+    rates = {}
+    for t in targets:
+        if t in stored and stored[t].get("exec_s"):
+            rates[t] = stored[t]["exec_s"]
+        else:
+            rates[t] = max(fuzz(build, t, 10 ** 9, PROBE_SECONDS, work)["exec_s"], 1)
+            print(f"probe {t}: {rates[t]} exec/s", flush=True)
+    return sorted(targets, key=lambda t: required_runs(t) / rates[t]), rates
+
+
+def run_campaign(build, order, budget, parallel, work, results_path, until=None, rates=None):
     """Runs the targets in order, `parallel` at a time; with a budget (s of wall time), each target starting
-    gets an equal share of the core time not yet promised to the targets running."""
+    gets an equal share of the core time not yet promised to the targets running. With `until` (a UTC
+    datetime) no run goes past it, and a target whose rate says it cannot reach its count by then is skipped."""
     deadline = time.monotonic() + budget
-    lock = threading.Lock()
+    lock, store_lock = threading.Lock(), threading.Lock()
     pending, promised, results = list(order), {}, []
 
     def worker():
@@ -99,8 +288,22 @@ def run_campaign(build, order, budget, parallel, work):
                     now = time.monotonic()
                     left = parallel * (deadline - now) - sum(max(0.0, end - now) for end in promised.values())
                     seconds = max(left / (len(pending) + 1), 1.0)
+                if until:
+                    to_go = (until - datetime.datetime.now(datetime.timezone.utc)).total_seconds()
+                    need = required_runs(t) / rates[t] if rates and rates.get(t) else 0
+                    if to_go < 1 or need > to_go:
+                        print(f"{t}: skipped, {need:.0f} s needed at {rates.get(t) if rates else '?'} exec/s, "
+                              f"{max(to_go, 0):.0f} s left before {until:%H:%M} UTC", flush=True)
+                        continue
+                    seconds = min(seconds, to_go)
                 promised[t] = time.monotonic() + seconds
+                print(f"{t}: started at {datetime.datetime.now(datetime.timezone.utc):%H:%M:%S} UTC", flush=True)
+            state = reader_state(build, t)
             r = fuzz(build, t, required_runs(t), seconds, work)
+            date = datetime.datetime.now(datetime.timezone.utc)
+            r.update(state, date=f"{date:%Y-%m-%d %H:%M} UTC", commit=git("rev-parse", "--short", "HEAD"),
+                     head_dirty=bool(git("status", "--porcelain", "--untracked-files=no")))
+            store(results_path, store_lock, r)
             with lock:
                 promised.pop(t)
                 results.append(r)
@@ -115,31 +318,51 @@ def run_campaign(build, order, budget, parallel, work):
     return results
 
 
-def section(results, build, budget, parallel):
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-    total = sum(r["runs"] for r in results)
-    met = sum(r["runs"] >= r["required"] for r in results)
+# ---------------------------------------------------------------------------
+# The BENCHMARKS section.
+
+def section(stored, targets, build, current, notes):
+    """The section from every stored result; `current` maps each target to its reader state now; `notes`
+    (target: text) are said under the table."""
+    rows = [stored[t] for t in targets if t in stored] + [stored[t] for t in sorted(stored) if t not in targets]
+    total = sum(r["runs"] for r in rows)
+    met = [r for r in rows if reached(r)]
+    missing = [t for t in targets if t not in stored]
+    dates = sorted(r["date"][:10] for r in rows)
     lines = [
         "## fuzz: the readers under libFuzzer (issue 24)\n",
-        f"`tools/bench/fuzz_campaign.py --build {build}" + (f" --budget {budget}" if budget else "") +
-        f" --parallel {parallel}` on {datetime.date.today()} at commit {commit}: clang 14, -O1, AddressSanitizer + "
-        f"UBSan (every report aborts), {parallel} target(s) at a time, one core each, on the shared 2-core machine, "
-        "from the seed corpora of tests/fuzz/seeds. The acceptance count is 10 million executions for the "
-        "hull, polyMesh and YAML readers, 1 million for the others; with a time budget the fastest targets "
-        "run first.\n",
-        "| target | executions | count | reached | exec/s | time (s) | corpus | crashes | leaks | UB |",
-        "|---|---:|---:|:---:|---:|---:|---:|---:|---:|---:|",
+        f"One campaign run in several sessions ({dates[0]} to {dates[-1]}) with "
+        f"`tools/bench/fuzz_campaign.py --build {build}` (results stored in "
+        "`<build>/fuzz/campaign/results.json`, this section rendered from them): each row is ONE libFuzzer "
+        "invocation of its target, started from the corpus the earlier sessions left, not a sum of runs; rows "
+        "of different dates come from separate runs of the campaign on the commit shown (the last commit of "
+        "the target's reader sources, * when they had local edits at the run). clang 14, -O1, "
+        "AddressSanitizer + UBSan (every report aborts), one target at a time under `nice -n 19` on the shared "
+        "2-core machine. The acceptance count is 10 million executions for the hull, polyMesh and YAML "
+        "readers, 1 million for the others. \"Changed since\": the reader sources (the sources and headers "
+        "its fuzz binary is compiled from) differ from those of the run.\n",
+        "| target | executions | count | reached | exec/s | time (s) | corpus | crashes | leaks | UB | date | commit | changed since |",
+        "|---|---:|---:|:---:|---:|---:|---:|---:|---:|---:|---|---|:---:|",
     ]
-    for r in results:
-        lines.append(f"| {r['target']} | {r['runs']:,} | {r['required']:,} | {'yes' if r['runs'] >= r['required'] else 'no'}"
-                     f" | {r['exec_s']:,} | {r['seconds']:.0f} | {r['corpus']} | {r['crashes']} | {r['leaks']} | {r['ub']} |")
+    for r in rows:
+        changed = current.get(r["target"], {}).get("reader_digest") != r.get("reader_digest")
+        commit = (r.get("reader_commit") or r.get("commit", "?")) + ("*" if r.get("reader_dirty") else "")
+        lines.append(f"| {r['target']} | {r['runs']:,} | {r['required']:,} | {'yes' if reached(r) else 'no'}"
+                     f" | {r['exec_s']:,} | {r['seconds']:.0f} | {r['corpus']} | {r['crashes']} | {r['leaks']} | {r['ub']}"
+                     f" | {r.get('date', '?')} | {commit} | {'yes' if changed else 'no'} |")
     lines.append("")
-    lines.append(f"{total:,} executions in all; {met} of {len(results)} targets reached their count; "
-                 f"{sum(r['crashes'] for r in results)} crashes, {sum(r['leaks'] for r in results)} leaks, "
-                 f"{sum(r['ub'] for r in results)} UB reports.")
-    for r in results:
-        if r["artifacts"]:
-            lines.append(f"- {r['target']}: {', '.join(r['artifacts'])}")
+    lines.append(f"{total:,} executions in these rows; {len(met)} of {len(targets)} targets reached their count; "
+                 f"{sum(r['crashes'] for r in rows)} crashes, {sum(r['leaks'] for r in rows)} leaks, "
+                 f"{sum(r['ub'] for r in rows)} UB reports.")
+    if missing:
+        lines.append(f"Not run yet: {', '.join(missing)}.")
+    todo = [r for r in rows if not reached(r) and r["exec_s"]]
+    if todo:
+        lines.append("Still to reach their count, with the core time one run needs at the rate of its row: " +
+                     "; ".join(f"{r['target']} {required_runs(r['target']) / r['exec_s'] / 3600:.1f} h" for r in todo) + ".")
+    for r in rows:
+        if r["artifacts"] or notes.get(r["target"]):
+            lines.append(f"- {r['target']}: " + "; ".join(filter(None, [", ".join(r["artifacts"]), notes.get(r["target"])])))
     return "\n".join(lines) + "\n"
 
 
@@ -149,20 +372,66 @@ def main():
     ap.add_argument("--targets", nargs="*", help="default: every target of the build (fuzz/targets.txt)")
     ap.add_argument("--budget", type=float, default=0, help="total seconds; 0: each target runs to its count")
     ap.add_argument("--parallel", type=int, default=1, help="targets at a time (one core each)")
-    ap.add_argument("--work", help="corpora, crashes and logs (default <build>/fuzz/campaign)")
+    ap.add_argument("--work", help="corpora, crashes, logs and results.json (default <build>/fuzz/campaign)")
+    ap.add_argument("--results", help="the stored results (default <work>/results.json)")
+    ap.add_argument("--skip-reached", action="store_true",
+                    help="run only targets without a stored run that reached its count on the current reader sources")
+    ap.add_argument("--fastest-first", action="store_true",
+                    help="order by time to reach the count (stored rates, else a short probe)")
+    ap.add_argument("--until", help="HH:MM UTC today: no run goes past it (stopped runs do not reach their count)")
+    ap.add_argument("--note", action="append", default=[], metavar="TARGET=TEXT",
+                    help="store a note said under the table for TARGET (empty TEXT removes it)")
+    ap.add_argument("--render-only", action="store_true", help="run nothing; write the section from the stored results")
     ap.add_argument("--write", help="BENCHMARKS.md to update (default: print the section)")
     args = ap.parse_args()
     if args.parallel < 1:
         ap.error(f"--parallel {args.parallel}: expected at least 1")
     work = args.work or os.path.join(args.build, "fuzz", "campaign")
-    targets = args.targets or open(os.path.join(args.build, "fuzz", "targets.txt")).read().split()
-    budget = args.budget
-    order, budget_left = targets, 0
-    if budget:
-        order, budget_left = plan(args.build, targets, budget, work)
-    results = run_campaign(args.build, order, budget_left if budget else 0, args.parallel, work)
-    write_or_print(args.write, NAME, section(sorted(results, key=lambda r: targets.index(r["target"])),
-                                             args.build, args.budget, args.parallel))
+    results_path = args.results or os.path.join(work, "results.json")
+    all_targets = open(os.path.join(args.build, "fuzz", "targets.txt")).read().split()
+    targets = args.targets or all_targets
+    until = None
+    if args.until:
+        if not re.fullmatch(r"\d\d?:\d\d", args.until):
+            ap.error(f"--until {args.until}: expected HH:MM")
+        h, m = map(int, args.until.split(":"))
+        until = datetime.datetime.now(datetime.timezone.utc).replace(hour=h, minute=m, second=0, microsecond=0)
+    if args.note:
+        notes = load_file(results_path)["notes"]
+        for n in args.note:
+            t, sep, text = n.partition("=")
+            if not sep:
+                ap.error(f"--note {n}: expected TARGET=TEXT")
+            if text:
+                notes[t] = text
+            else:
+                notes.pop(t, None)
+        save_results(results_path, notes=notes)
+    stored = load_results(results_path)
+    current = {t: reader_state(args.build, t) for t in set(all_targets) | set(targets) | set(stored)}
+    if not args.render_only:
+        order = list(targets)
+        if args.skip_reached:
+            done = [t for t in order if t in stored and reached(stored[t])
+                    and stored[t].get("reader_digest") == current[t]["reader_digest"]]
+            for t in done:
+                print(f"{t}: skipped, reached {stored[t]['runs']:,} on {stored[t]['date']} on these reader sources",
+                      flush=True)
+            order = [t for t in order if t not in done]
+        budget, rates = args.budget, None
+        if order and budget:
+            order, budget = plan(args.build, order, budget, work)
+        elif order and args.fastest_first:
+            order, rates = fastest_first(args.build, order, stored, work)
+        elif until:  # the stored rates tell which targets can still reach their count; the others start anyway
+            rates = {t: stored[t]["exec_s"] for t in order if t in stored and stored[t].get("exec_s")}
+        print("order: " + " ".join(order), flush=True)
+        run_campaign(args.build, order, budget, args.parallel, work, results_path, until, rates)
+        stored = load_results(results_path)
+        current = {t: reader_state(args.build, t) for t in set(all_targets) | set(stored)}
+    if not stored:
+        sys.exit(f"no results stored in {results_path}")
+    write_or_print(args.write, NAME, section(stored, all_targets, args.build, current, load_file(results_path)["notes"]))
 
 
 if __name__ == "__main__":

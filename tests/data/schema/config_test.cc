@@ -101,6 +101,31 @@ TEST(ClosestMatchTest, SuggestsOnlyCloseWords) {
   EXPECT_FALSE(ClosestMatch("zzzzzzzzzz", keys).has_value());
 }
 
+// ClosestMatch gives up on a candidate once it cannot beat the best so far;
+// the answer is the one of the full edit distance: the first of the closest.
+TEST(ClosestMatchTest, FirstOfTheClosestAndLongWords) {
+  const std::vector<std::string> keys{"Y_vvr", "Y_v", "Y_r", "Y_vr"};
+  EXPECT_EQ(ClosestMatch("Y_vr", keys).value_or(""), "Y_vr");
+  EXPECT_EQ(ClosestMatch("Y_vx", keys).value_or(""), "Y_v");
+  EXPECT_EQ(ClosestMatch("Y_vr", std::vector<std::string>{"Y_vvr", "Y_v"}).value_or(""), "Y_vvr");
+  const std::string long_key(300, 'a');
+  const std::vector<std::string> long_keys{std::string(290, 'a') + "bbbbbbbbbb", long_key + "x", "a"};
+  EXPECT_EQ(ClosestMatch(long_key, long_keys).value_or(""), long_key + "x");
+  EXPECT_EQ(ClosestMatch(std::string(300, 'b'), long_keys).value_or("-"), "-");
+}
+
+TEST(ConfigTest, ExpectKeysNamesTheFirstUnknownKey) {
+  const auto root = ConfigNode::LoadString("ship:\n  name: a\n  lenght: 2\n  bem: 3\n", "ship.yaml");
+  EXPECT_NO_THROW(root["ship"].ExpectKeys({"name", "lenght", "bem"}));
+  try {
+    root["ship"].ExpectKeys({"name", "length", "beam"});
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("ship.yaml:3: unknown key 'ship.lenght'; valid keys: name, length, beam "
+                                    "(did you mean 'length'?)"));
+  }
+}
+
 // Found by the fuzz targets: yaml-cpp's own exception escaped for a key that
 // is a list or a map.
 TEST(ConfigTest, AListOrAMapAsAKeyIsAConfigError) {
