@@ -51,6 +51,42 @@ bool ClassicalCounterpart(const std::string& name, const sim::HullCoefficients<d
   return true;
 }
 
+namespace {
+
+// The identified interaction coefficients (read by the surrogate) and how
+// each was found (informative).
+void EmitInteraction(const InteractionFitResult& r, YAML::Emitter& y) {
+  y << YAML::Key << "interaction" << YAML::Value
+    << YAML::Comment("MMG interaction coefficients from the captive runs with propeller and rudder; they replace "
+                     "the ship file's")
+    << YAML::BeginMap;
+  for (const InteractionCoefficient& k : r.coefficients)
+    if (k.identified) y << YAML::Key << k.name << YAML::Value << Number(k.value);
+  y << YAML::EndMap;
+  y << YAML::Key << "interaction_fit" << YAML::Value << YAML::BeginMap;
+  y << YAML::Key << "coefficients" << YAML::Value << YAML::BeginSeq;
+  for (const InteractionCoefficient& k : r.coefficients) {
+    y << YAML::Flow << YAML::BeginMap;
+    y << YAML::Key << "name" << YAML::Value << k.name;
+    y << YAML::Key << "value" << YAML::Value << Number(k.value);
+    y << YAML::Key << "ship_file" << YAML::Value << Number(k.ship);
+    y << YAML::Key << "identified" << YAML::Value << k.identified;
+    if (k.identified) {
+      y << YAML::Key << "runs" << YAML::Value << k.runs;
+      y << YAML::Key << "rms_residual" << YAML::Value << Number(k.rms);
+      y << YAML::Key << "units" << YAML::Value << k.units;
+    }
+    y << YAML::EndMap;
+  }
+  y << YAML::EndSeq;
+  y << YAML::Key << "warnings" << YAML::Value << YAML::BeginSeq;
+  for (const std::string& w : r.warnings) y << w;
+  y << YAML::EndSeq;
+  y << YAML::EndMap;
+}
+
+}  // namespace
+
 std::string FormatDerivativeYaml(const IdentificationReport& rep) {
   const JointFitResult& fit = *rep.fit;
   YAML::Emitter y;
@@ -142,6 +178,7 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
     y << YAML::EndSeq;
   }
   y << YAML::EndMap;  // fit
+  if (rep.interaction) EmitInteraction(*rep.interaction, y);
   y << YAML::EndMap;
   return std::string(y.c_str()) + "\n";
 }

@@ -1,6 +1,7 @@
 // Output of an identification: the derivative set as YAML for humans, in the
 // derivative-set layout the bridge loads (simulator/mmg/derivative_set.h:
-// derivative_set, hull, standard_errors, fit; the `hull:` section has the
+// derivative_set, hull, standard_errors, fit, and interaction with
+// interaction_fit when the campaign ran the propeller and rudder; the `hull:` section has the
 // keys of a ship file's `hull:` section) and as HDF5 with the full covariance
 // and the measured and fitted forces of every run (for
 // tools/plot_identification.py). Both files are written atomically.
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "data/schema/captive_run.h"
+#include "identification/interaction_fit.h"
 #include "identification/joint_fit.h"
 #include "identification/pmm_analysis.h"
 
@@ -20,6 +22,7 @@ struct IdentificationReport {
   const data::CaptiveCampaign* campaign = nullptr;
   const JointFitResult* fit = nullptr;
   const PmmAnalysis* pmm = nullptr;  // optional cross-check
+  const InteractionFitResult* interaction = nullptr;  // optional: the campaign's runs with propeller and rudder
 };
 
 std::string FormatDerivativeYaml(const IdentificationReport& report);

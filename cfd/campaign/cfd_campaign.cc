@@ -15,6 +15,7 @@
 #include <optional>
 #include <thread>
 
+#include "cfd/campaign/appendage_run.h"
 #include "cfd/run/captive_sampler.h"
 #include "cfd/run/run_driver.h"
 #include "data/report/progress.h"
@@ -24,6 +25,7 @@
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
+#include "simulator/mmg/ship_parameters.h"
 
 extern char** environ;
 
@@ -55,6 +57,8 @@ struct Job {
   fs::path dir;
   // Steady runs: the criterion that ends them (none: a fixed duration).
   std::optional<SteadyOptions> settle;
+  // A run with the propeller and rudder (tests.appendages): fixed duration.
+  std::optional<data::AppendageTest> appendage;
   State state = State::kLeft;
   int step = 0;
   std::string message;
@@ -127,6 +131,17 @@ std::vector<Job> PlanJobs(const data::CampaignFile& f, const data::CaptiveShip& 
     }
     job.dir = f.cfd.directory / run.name;
     jobs.push_back(std::move(job));
+  }
+  if (f.appendages) {
+    for (const data::AppendageTest& t : data::PlanAppendageTests(*f.appendages, f.speed, ship.Lpp)) {
+      Job job;
+      job.name = t.name;
+      job.appendage = t;
+      job.dt = case_dt;
+      job.steps = static_cast<int>(std::llround((f.cfd.steady_ramp + f.cfd.steady_duration) / case_dt));
+      job.dir = f.cfd.directory / t.name;
+      jobs.push_back(std::move(job));
+    }
   }
   return jobs;
 }
@@ -237,7 +252,8 @@ std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
   long remaining = 0;
   for (const Job& j : jobs) {
     out += fmt::format("  {:<30} {:<16} {:<8} {:>6}/{:<6}\n", j.name,
-                       data::MotionKindName(j.motion.kind), StateName(j.state), j.step, j.steps);
+                       j.appendage ? std::string_view("prop+rudder") : data::MotionKindName(j.motion.kind),
+                       StateName(j.state), j.step, j.steps);
     done += j.state == Job::State::kDone;
     running += j.state == Job::State::kRunning;
     left += j.state == Job::State::kLeft;
@@ -314,7 +330,9 @@ class RunLock {
 // cost so far and the progress file; the progress table after each step.
 class JobFiles final : public Monitor {
  public:
-  JobFiles(Context& ctx, Job& job, const CaptiveSampler& sampler, RunCost cost)
+  // `sampler`: null for a run with the propeller and rudder (its samples are
+  // in its checkpoints).
+  JobFiles(Context& ctx, Job& job, const CaptiveSampler* sampler, RunCost cost)
       : ctx_(ctx), job_(job), sampler_(sampler), cost_(cost) {}
   void AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) override {
     cost_.cpu_seconds += record.step_cpu_seconds;
@@ -324,11 +342,24 @@ class JobFiles final : public Monitor {
     if (ctx_.report) ctx_.report();
   }
   void BeforeCheckpoint(const PimpleSolver&) override {
-    WriteSamples(job_.dir / "samples.h5", sampler_.samples(), job_.step, job_.steps, cost_);
+    if (sampler_) WriteSamples(job_.dir / "samples.h5", sampler_->samples(), job_.step, job_.steps, cost_);
     WriteProgressFile(job_, seconds());
   }
   void WriteResult(const Settle& settle) const {
-    WriteSamples(job_.dir / "result.h5", sampler_.samples(), job_.step, job_.steps, cost_, settle);
+    WriteSamples(job_.dir / "result.h5", sampler_->samples(), job_.step, job_.steps, cost_, settle);
+    WriteProgressFile(job_, seconds());
+  }
+  // A run with the propeller and rudder: its means and cost.
+  void WriteAppendageResult(const data::AppendageRun& run) const {
+    data::H5Writer w(job_.dir / "result.h5");
+    w.SetAttribute("/", "kind", "kelvin captive CFD run with propeller and rudder");
+    w.SetAttribute("/", "cpu_seconds", cost_.cpu_seconds);
+    w.SetAttribute("/", "courant_max", cost_.courant_max);
+    w.SetAttribute("/", "cells", cost_.cells);
+    data::AppendageCampaign one;
+    one.runs.push_back(run);
+    data::WriteAppendageRuns(one, w);
+    w.Commit();
     WriteProgressFile(job_, seconds());
   }
 
@@ -336,7 +367,7 @@ class JobFiles final : public Monitor {
   double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
   Context& ctx_;
   Job& job_;
-  const CaptiveSampler& sampler_;
+  const CaptiveSampler* sampler_;
   RunCost cost_;
   Clock::time_point start_ = Clock::now();
 };
@@ -371,8 +402,11 @@ Resume ReadResume(const Job& job) {
 
 // Runs (or resumes) one job through the run driver; false when the step
 // budget ran out first.
+bool ExecuteAppendageJob(Context& ctx, Job& job);
+
 bool ExecuteJob(Context& ctx, Job& job) {
   if (ctx.budget > 0 && ctx.computed >= ctx.budget) return false;  // as if killed here
+  if (job.appendage) return ExecuteAppendageJob(ctx, job);
   CaseOverrides overrides;
   overrides.motion = job.cfd_motion;
   overrides.dt = job.dt;
@@ -394,7 +428,7 @@ bool ExecuteJob(Context& ctx, Job& job) {
   resume.cost.cells = c.mesh->n_cells();
   RunDriverOptions o;
   sampler.Restore(std::move(resume.samples));
-  JobFiles files(ctx, job, sampler, resume.cost);
+  JobFiles files(ctx, job, &sampler, resume.cost);
   Monitor* monitors[] = {&sampler, &files};
   o.restart = resume.restart ? checkpoint : fs::path();
   o.checkpoint = checkpoint;
@@ -421,6 +455,46 @@ bool ExecuteJob(Context& ctx, Job& job) {
   std::error_code ec;
   fs::remove(checkpoint, ec);
   fs::remove(job.dir / "samples.h5", ec);
+  return true;
+}
+
+// A run with the propeller and rudder: the free-running coupler holds the
+// body, the sampler keeps its samples in the checkpoints; the means over the
+// second half of the steady duration go into result.h5.
+bool ExecuteAppendageJob(Context& ctx, Job& job) {
+  CaseOverrides overrides;
+  overrides.dt = job.dt;
+  overrides.end_time = job.dt * job.steps;
+  overrides.output = job.dir;
+  fs::create_directories(job.dir);
+  const RunLock lock(job);
+  data::RemoveStaleTemporaries(job.dir);
+  const fs::path checkpoint = job.dir / "checkpoint.h5";
+  Case c = LoadAppendageCase(ctx.file, *job.appendage, overrides);
+  c.force_patches = HullPatches(ctx, c);
+  FreeRunningCoupler coupler(c);
+  AppendageSampler sampler(c, coupler);
+  RunCost cost;
+  cost.cells = c.mesh->n_cells();
+  JobFiles files(ctx, job, nullptr, cost);
+  Monitor* monitors[] = {&coupler, &sampler, &files};
+  RunDriverOptions o;
+  o.restart = fs::exists(checkpoint) ? checkpoint : fs::path();
+  o.checkpoint = checkpoint;
+  o.checkpoint_interval = ctx.file.cfd.checkpoint_interval;
+  o.checkpoint_at_end = false;
+  o.step_budget = ctx.budget > 0 ? ctx.budget - ctx.computed : 0;
+  o.progress = false;
+  const RunDriverSummary d = RunDriver(c, monitors, o);
+  if (d.status == RunDriverSummary::Status::kDiverged) {
+    throw RunDivergedError(fmt::format("run '{}' {}", job.name, d.message));
+  }
+  if (d.status == RunDriverSummary::Status::kStopped) return false;
+  job.step = c.solver->step();
+  const double from = ctx.file.cfd.steady_ramp + 0.5 * ctx.file.cfd.steady_duration - 0.5 * job.dt;
+  files.WriteAppendageResult(sampler.Mean(*job.appendage, from));
+  std::error_code ec;
+  fs::remove(checkpoint, ec);
   return true;
 }
 
@@ -711,6 +785,21 @@ void WriteExtraChannels(data::H5Writer& w, const std::string& run,
   }
 }
 
+// The ship file's propeller and rudder, for the fit of the interaction coefficients.
+data::AppendageGeometry AppendageGeometryOf(const data::AppendageDesign& d) {
+  const sim::ShipParameters ship = sim::LoadShip(d.ship_file);
+  data::AppendageGeometry g;
+  g.Lpp = ship.principal.Lpp;
+  g.D_p = ship.propeller.D_p;
+  g.A_R = ship.rudder.A_R;
+  g.H_R = ship.rudder.H_R;
+  g.rho = ship.principal.rho;
+  g.x_R_prime = ship.rudder.x_R_prime;
+  g.x_P_prime = ship.propeller.x_P_prime;
+  g.ship_file = fs::absolute(d.ship_file).lexically_normal().string();
+  return g;
+}
+
 // Every run is done: the campaign file in the captive schema, with the
 // solver, the case and the prime draft as attributes and the extra channels.
 void WriteCampaignFile(const data::CampaignFile& f, const data::CaptiveShip& ship,
@@ -724,9 +813,16 @@ void WriteCampaignFile(const data::CampaignFile& f, const data::CaptiveShip& shi
       free_surface ? "linearized free surface" : "double body (no free surface)");
   campaign.ship = ship;
   std::vector<std::vector<CaptiveSample>> all;
+  std::vector<const Job*> bare;
+  data::AppendageCampaign appendages;
   for (const Job& j : jobs) {
+    if (j.appendage) {
+      appendages.runs.push_back(data::ReadAppendageRuns(j.dir / "result.h5", /*geometry=*/false).runs.at(0));
+      continue;
+    }
     all.push_back(ReadSamples(j.dir / "result.h5", RigidMotion(j.cfd_motion)));
     campaign.runs.push_back(CaptiveRunOf(j, all.back()));
+    bare.push_back(&j);
   }
   // One writer and one Commit(): a kill between two commits would leave the
   // file under its name without the attributes and channels below. A kill
@@ -737,7 +833,11 @@ void WriteCampaignFile(const data::CampaignFile& f, const data::CaptiveShip& shi
   w.SetAttribute("/", "solver", "cfd");
   w.SetAttribute("/", "case", f.cfd.case_file.string());
   w.SetAttribute("/", "prime_draft", f.cfd.draft > 0 ? f.cfd.draft : ship.d);
-  for (std::size_t r = 0; r < jobs.size(); ++r) WriteExtraChannels(w, jobs[r].name, all[r]);
+  for (std::size_t r = 0; r < bare.size(); ++r) WriteExtraChannels(w, bare[r]->name, all[r]);
+  if (f.appendages) {
+    appendages.geometry = AppendageGeometryOf(*f.appendages);
+    data::WriteAppendageRuns(appendages, w);
+  }
   w.Commit();
 }
 

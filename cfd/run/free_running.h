@@ -44,6 +44,8 @@ class FreeRunningCoupler final : public Monitor {
   const FreeBody& body() const { return *body_; }
   // The hull loads of the latest outer iteration.
   const HullLoads& hull_loads() const { return hull_loads_; }
+  // The actuators' loads of the latest outer iteration (ship axes, about the reference point).
+  const PlanarLoad& actuator_load() const { return actuator_load_; }
 
  private:
   struct Columns {

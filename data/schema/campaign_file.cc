@@ -59,6 +59,40 @@ void ReadSettle(const ConfigNode& n, CampaignFile::Cfd& cfd) {
   }
 }
 
+// Circular motion (rotating arm) runs: circular: [{drift_deg: 0, r_prime: 0.3}, ...]
+// as (beta in rad, r').
+std::vector<std::pair<double, double>> Circular(const ConfigNode& tests) {
+  std::vector<std::pair<double, double>> out;
+  if (auto circ = tests.Find("circular")) {
+    for (const auto& item : circ->Items()) {
+      item.ExpectKeys({"drift_deg", "r_prime"});
+      const double beta = item.Get<double>("drift_deg", 0.0);
+      if (std::abs(beta) >= 90) item["drift_deg"].Fail("an angle in degrees with |angle| < 90");
+      const double r = item.Get<double>("r_prime");
+      if (!(std::isfinite(r) && r != 0)) item["r_prime"].Fail("a non-zero yaw rate r' = r Lpp / U");
+      out.emplace_back(beta * kDeg, r);
+    }
+  }
+  return out;
+}
+
+AppendageDesign ReadAppendages(const ConfigNode& a, const std::filesystem::path& path) {
+  a.ExpectKeys({"ship", "propeller_rate", "swirl", "rate_factors", "rudder_deg", "drift_deg", "circular"});
+  AppendageDesign d;
+  d.ship_file = a.Get<std::string>("ship");
+  if (d.ship_file.is_relative()) d.ship_file = path.parent_path() / d.ship_file;
+  d.propeller_rate = a.GetPositive("propeller_rate");
+  d.swirl = a.Get<bool>("swirl", true);
+  d.rate_factors = PositiveList(a, "rate_factors");
+  d.rudder_angles = Degrees(a, "rudder_deg");
+  for (double x : d.rudder_angles) {
+    if (x == 0.0) a["rudder_deg"].Fail("non-zero angles (the run at 0 is always made)");
+  }
+  d.drift_angles = Degrees(a, "drift_deg");
+  for (const auto& [beta, r] : Circular(a)) d.circular.push_back({beta, r});
+  return d;
+}
+
 }  // namespace
 
 CampaignFile LoadCampaignFile(const std::filesystem::path& path) {
@@ -92,7 +126,7 @@ CampaignFile LoadCampaignFile(const ConfigNode& root, const std::filesystem::pat
 
   const auto t = root["tests"];
   t.ExpectKeys({"static_drift_deg", "pure_sway_v_prime", "pure_yaw_r_prime", "yaw_drift_deg", "yaw_drift_r_prime",
-                "omega_prime", "circular"});
+                "omega_prime", "circular", "appendages"});
   f.design.drift_angles = Degrees(t, "static_drift_deg");
   f.design.sway_amplitudes = PositiveList(t, "pure_sway_v_prime");
   f.design.yaw_amplitudes = PositiveList(t, "pure_yaw_r_prime");
@@ -100,20 +134,14 @@ CampaignFile LoadCampaignFile(const ConfigNode& root, const std::filesystem::pat
   f.design.yaw_drift_amplitude = t.Get<double>("yaw_drift_r_prime", 0.4);
   f.design.omega_prime = t.Get<double>("omega_prime", 3.0);
   if (!(f.design.omega_prime > 0)) t["omega_prime"].Fail("a positive nondimensional frequency");
-  if (auto circ = t.Find("circular")) {
-    // Circular motion (rotating arm): [{drift_deg: 0, r_prime: 0.3}, ...]
-    for (const auto& item : circ->Items()) {
-      item.ExpectKeys({"drift_deg", "r_prime"});
-      const double beta = item.Get<double>("drift_deg", 0.0);
-      if (std::abs(beta) >= 90) item["drift_deg"].Fail("an angle in degrees with |angle| < 90");
-      const double r = item.Get<double>("r_prime");
-      if (!(std::isfinite(r) && r != 0)) item["r_prime"].Fail("a non-zero yaw rate r' = r Lpp / U");
-      f.design.circular.push_back({beta * kDeg, r});
-    }
-  }
+  for (const auto& [beta, r] : Circular(t)) f.design.circular.push_back({beta, r});
   if (f.design.drift_angles.empty() && f.design.sway_amplitudes.empty() && f.design.yaw_amplitudes.empty() &&
       f.design.yaw_drift_angles.empty() && f.design.circular.empty()) {
     t.Fail("at least one test (static_drift_deg, pure_sway_v_prime, pure_yaw_r_prime, yaw_drift_deg or circular)");
+  }
+  if (auto a = t.Find("appendages")) {
+    if (f.solver != CampaignFile::Solver::kCfd) a->Fail("no appendages: runs with the propeller and rudder need solver: cfd");
+    f.appendages = ReadAppendages(*a, path);
   }
   if (auto s = root.Find("sampling")) {
     s->ExpectKeys({"samples_per_period", "periods", "ramp_periods"});

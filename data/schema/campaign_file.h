@@ -18,6 +18,8 @@
 //     yaw_drift_r_prime: 0.4
 //     omega_prime: 3.0                   # omega Lpp / U of the harmonic runs
 //     circular: [{drift_deg: 0, r_prime: 0.3}]   # rotating arm (steady)
+//     appendages: {...}                  # cfd only: runs with the propeller and rudder
+//                                        # (data/schema/appendage_runs.h)
 //   sampling: {samples_per_period: 200, periods: 5, ramp_periods: 1}
 //
 // With `solver: cfd` every run is a `kelvin run` case with the prescribed
@@ -51,9 +53,11 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "data/schema/appendage_runs.h"
 #include "data/schema/captive_plan.h"
 #include "data/schema/captive_run.h"
 
@@ -70,6 +74,7 @@ struct CampaignFile {
   double noise = 0;
   std::uint64_t seed = 1;
   CampaignDesign design;
+  std::optional<AppendageDesign> appendages;  // tests.appendages (cfd only)
   VirtualCaptiveOptions sampling;
 
   // The `cfd:` section (solver cfd only).

@@ -16,7 +16,7 @@ DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesys
   if (!root.IsMap()) root.Fail("a derivative set (a map with a 'hull' section)");
   // The sections `kelvin identify` writes (identification/derivative_set_io.h),
   // and the check.
-  root.ExpectKeys({"derivative_set", "hull", "standard_errors", "fit", "check"});
+  root.ExpectKeys({"derivative_set", "hull", "standard_errors", "fit", "interaction", "interaction_fit", "check"});
   DerivativeSet set;
   set.file = path.string();
   if (const auto meta = root.Find("derivative_set")) {
@@ -31,6 +31,15 @@ DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesys
     set.hull[i] = hull.Get<double>(names[static_cast<std::size_t>(i)]);
     if (!std::isfinite(set.hull[i])) hull[names[static_cast<std::size_t>(i)]].Fail("a finite number");
   }
+  if (const auto inter = root.Find("interaction")) {
+    if (!inter->IsMap()) inter->Fail("a map of MMG interaction coefficients (t_P, epsilon, ...)");
+    const std::vector<std::string> keys(kInteractionKeys.begin(), kInteractionKeys.end());
+    inter->ExpectKeys(keys);
+    for (const std::string& k : inter->Keys()) {
+      set.interaction[k] = inter->Get<double>(k);
+      if (!std::isfinite(set.interaction[k])) (*inter)[k].Fail("a finite number");
+    }
+  }
   if (const auto check = root.Find("check")) {
     check->ExpectKeys({"passed", "reference", "date", "summary"});
     DerivativeCheck c;
@@ -41,6 +50,21 @@ DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesys
     set.check = c;
   }
   return set;
+}
+
+void ApplyInteraction(const std::map<std::string, double>& interaction, ShipParameters& ship) {
+  PropellerParameters& pp = ship.propeller;
+  RudderParameters& rp = ship.rudder;
+  const std::map<std::string, double*> targets = {
+      {"t_P", &pp.t_P},       {"w_P0", &pp.w_P0},         {"epsilon", &rp.epsilon},
+      {"kappa", &rp.kappa},   {"gamma_R_minus", &rp.gamma_R_minus}, {"gamma_R_plus", &rp.gamma_R_plus},
+      {"l_R_prime", &rp.l_R_prime}, {"t_R", &rp.t_R},     {"a_H", &rp.a_H},
+      {"x_H_prime", &rp.x_H_prime}, {"f_alpha", &rp.f_alpha}};
+  for (const auto& [key, value] : interaction) {
+    const auto it = targets.find(key);
+    KELVIN_CHECK(it != targets.end(), "an interaction key of kInteractionKeys");
+    *it->second = value;
+  }
 }
 
 }  // namespace kelvin::sim

@@ -8,13 +8,22 @@
 //   hull: {R0_prime: ..., ..., J_z_prime: ...}   # all 20, as in ship files
 //   standard_errors: {...}                       # informative, not read here
 //   fit: {...}                                   # informative, not read here
+//   interaction: {t_P: ..., epsilon: ..., ...}    # optional: identified MMG
+//                                                # interaction coefficients
+//   interaction_fit: {...}                       # informative, not read here
 //   check: {passed: true|false, reference: ..., date: ..., summary: ...}
+//
+// The interaction section (identification/interaction_fit.h) replaces the
+// ship file's values of the keys it has: t_P, w_P0 (propeller), epsilon,
+// kappa, gamma_R_minus, gamma_R_plus, l_R_prime, t_R, a_H, x_H_prime, f_alpha (rudder).
 //
 // The hull section of a published ship file is a reference set: it was not
 // checked against this project's CFD.
 #pragma once
 
+#include <array>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -33,8 +42,16 @@ struct DerivativeSet {
   std::string file;
   std::string name;
   HullCoefficients<double> hull;
+  std::map<std::string, double> interaction;  // the keys above
   std::optional<DerivativeCheck> check;
 };
+
+// The interaction keys a set may carry, in ship-file order.
+inline constexpr std::array<const char*, 11> kInteractionKeys = {
+    "t_P", "w_P0", "epsilon", "kappa", "gamma_R_minus", "gamma_R_plus", "l_R_prime", "t_R", "a_H", "x_H_prime",
+    "f_alpha"};
+// Replaces the ship's values of the keys in `interaction` (each one of kInteractionKeys).
+void ApplyInteraction(const std::map<std::string, double>& interaction, ShipParameters& ship);
 
 // Loads a derivative file; throws kelvin::ConfigError naming the file, line
 // and key for an unknown key, a missing derivative or a non-number.

@@ -6,6 +6,7 @@ ShipParameters SurrogateShip(ShipParameters ship, const std::string& ship_file, 
   if (set) {
     ship.hull = set->hull;
     ship.has_hull = true;
+    ApplyInteraction(set->interaction, ship);
     ship.Validate(set->file);
   }
   RequireManeuveringModel(ship, ship_file);

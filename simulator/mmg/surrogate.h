@@ -1,6 +1,8 @@
 // The surrogate: a ship file's MMG model with a derivative set's hull
-// derivatives and added masses in place of its hull section. kelvin simulate
-// --derivatives runs it, and kelvin check compares it with reference runs.
+// derivatives and added masses in place of its hull section, and the set's
+// identified interaction coefficients (if any) in place of the ship file's.
+// kelvin simulate and bridge --derivatives run it, and kelvin check compares
+// it with reference runs.
 #pragma once
 
 #include <string>
@@ -10,7 +12,7 @@
 
 namespace kelvin::sim {
 
-// `ship` (loaded from `ship_file`) with the hull of `set` when there is one
+// `ship` (loaded from `ship_file`) with the hull and interaction of `set` when there is one
 // (validated; a kelvin::ModelError names the set's file), required to be a
 // complete maneuvering model (a kelvin::ConfigError names `ship_file`).
 ShipParameters SurrogateShip(ShipParameters ship, const std::string& ship_file, const DerivativeSet* set);

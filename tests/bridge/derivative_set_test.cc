@@ -10,6 +10,7 @@
 #include "bridge/derivative_set.h"
 #include "data/schema/errors.h"
 #include "identification/derivative_set_io.h"
+#include "simulator/mmg/surrogate.h"
 #include "tests/test_utilities/test_utilities.h"
 #include "tests/simulator/simulator_test_utilities.h"
 
@@ -54,6 +55,35 @@ TEST(DerivativeSet, LoadsTheHullAndThePassingCheck) {
   const DerivativeAssessment a = AssessDerivatives(ship, set, /*require_checked=*/true);
   EXPECT_EQ(a.status, DerivativeStatus::kChecked);
   EXPECT_EQ(a.message, "derivative set " + path.string() + " passed its check against free-running CFD zig-zag 20/20");
+}
+
+// A set's interaction section (identified from CFD runs with propeller and
+// rudder) replaces the ship file's values in the surrogate; a key outside
+// the MMG interaction coefficients, or a non-number, is one error naming it.
+TEST(DerivativeSet, InteractionSectionReplacesTheShipFilesCoefficients) {
+  const testing::ScopedTempDir dir;
+  const auto path = WriteSet(dir, "i.yaml", "", "interaction: {epsilon: 0.99, kappa: 0.87, f_alpha: 2.96}\n");
+  const DerivativeSet set = LoadDerivativeSet(path);
+  ASSERT_EQ(set.interaction.size(), 3u);
+  const sim::ShipParameters file = Kvlcc2();
+  const sim::ShipParameters ship = sim::SurrogateShip(file, "kvlcc2.yaml", &set);
+  EXPECT_EQ(ship.rudder.epsilon, 0.99);
+  EXPECT_EQ(ship.rudder.kappa, 0.87);
+  EXPECT_EQ(ship.rudder.f_alpha, 2.96);
+  EXPECT_EQ(ship.rudder.gamma_R_plus, file.rudder.gamma_R_plus);  // not in the set
+  EXPECT_EQ(ship.propeller.t_P, file.propeller.t_P);
+  for (const auto& [section, needle] :
+       {std::pair{"interaction: {gamma_R: 0.3}\n", "gamma_R"}, {"interaction: {t_R: abc}\n", "t_R"},
+        {"interaction: [1, 2]\n", "interaction"}}) {
+    const auto bad = WriteSet(dir, "bad.yaml", "", section);
+    try {
+      LoadDerivativeSet(bad);
+      ADD_FAILURE() << "no error for " << section;
+    } catch (const ConfigError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(needle));
+      EXPECT_THAT(e.what(), HasSubstr("bad.yaml"));
+    }
+  }
 }
 
 // The contract with identification: the YAML that `kelvin identify` writes

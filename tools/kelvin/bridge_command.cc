@@ -21,6 +21,7 @@
 #include "bridge/lcm_url.h"
 #include "data/schema/errors.h"
 #include "simulator/mmg/ship_parameters.h"
+#include "simulator/mmg/surrogate.h"
 #include "tools/kelvin/commands.h"
 
 namespace kelvin::cli {
@@ -122,13 +123,8 @@ void PrintPageCounters(const bridge::PageCounters& p) {
 void RunBridge(BridgeArgs& a) {
   sim::ShipParameters ship = sim::LoadShip(a.ship_file);
   std::optional<sim::DerivativeSet> set;
-  if (!a.derivatives.empty()) {
-    set = sim::LoadDerivativeSet(a.derivatives);
-    ship.hull = set->hull;
-    ship.has_hull = true;
-    ship.Validate(a.derivatives);
-  }
-  sim::RequireManeuveringModel(ship, a.ship_file);
+  if (!a.derivatives.empty()) set = sim::LoadDerivativeSet(a.derivatives);
+  ship = sim::SurrogateShip(std::move(ship), a.ship_file, set ? &*set : nullptr);
   const bridge::DerivativeAssessment assessment = bridge::AssessDerivatives(ship, set, a.require_checked);
   if (assessment.status == bridge::DerivativeStatus::kChecked) {
     spdlog::info("{}", assessment.message);

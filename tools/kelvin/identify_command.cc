@@ -5,12 +5,15 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "data/schema/appendage_runs.h"
 #include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
 #include "identification/derivative_set_io.h"
+#include "identification/interaction_fit.h"
 #include "identification/joint_fit.h"
 #include "identification/pmm_analysis.h"
 #include "identification/virtual_captive.h"
@@ -59,6 +62,33 @@ double ParseDouble(const std::string& option, const std::string& text) {
   if (used == 0 || used != text.size())
     throw ArgumentError(fmt::format("{}: '{}' is not a number", option, text));
   return v;
+}
+
+// The interaction coefficients from the campaign's runs with the propeller
+// and rudder (a CFD campaign's tests.appendages), if it has any.
+std::optional<ident::InteractionFitResult> FitAppendages(const std::string& source,
+                                                         const data::CaptiveCampaign& campaign) {
+  if (!data::HasAppendageRuns(source)) return std::nullopt;
+  const data::AppendageCampaign appendages = data::ReadAppendageRuns(source);
+  const sim::ShipParameters ship = sim::LoadShip(appendages.geometry.ship_file);
+  ident::InteractionFitOptions o;
+  o.propeller = ship.propeller;
+  o.rudder = ship.rudder;
+  if (!appendages.runs.empty()) o.bare_X = ident::BareStraightX(campaign, appendages.runs.front().u);
+  return ident::FitInteraction(appendages, o, source);
+}
+
+void PrintInteraction(const ident::InteractionFitResult& r) {
+  fmt::print("interaction coefficients from the runs with propeller and rudder:\n");
+  fmt::print("{:<14} {:>10} {:>10} {:>5} {:>11}  {}\n", "coefficient", "value", "ship file", "runs", "rms", "");
+  for (const ident::InteractionCoefficient& k : r.coefficients) {
+    if (k.identified) {
+      fmt::print("{:<14} {:>10.4g} {:>10.4g} {:>5} {:>11.3g}  {}\n", k.name, k.value, k.ship, k.runs, k.rms, k.units);
+    } else {
+      fmt::print("{:<14} {:>10.4g} {:>10.4g}  (kept)\n", k.name, k.value, k.ship);
+    }
+  }
+  for (const std::string& w : r.warnings) fmt::print("warning: {}\n", w);
 }
 
 void RunIdentify(const IdentifyArgs& a) {
@@ -136,7 +166,9 @@ void RunIdentify(const IdentifyArgs& a) {
 
   const ident::PmmAnalysis pmm = ident::AnalyseCampaign(campaign, source);
   const ident::JointFitResult fit = ident::FitCampaign(campaign, options, source);
-  const ident::IdentificationReport report{source, &campaign, &fit, &pmm};
+  const std::optional<ident::InteractionFitResult> interaction =
+      any_h5 ? FitAppendages(source, campaign) : std::nullopt;
+  const ident::IdentificationReport report{source, &campaign, &fit, &pmm, interaction ? &*interaction : nullptr};
   const fs::path yaml_path(a.output);
   const fs::path h5_path =
       a.h5_output.empty() ? fs::path(yaml_path).replace_extension(".h5") : fs::path(a.h5_output);
@@ -158,6 +190,7 @@ void RunIdentify(const IdentifyArgs& a) {
                data::DescribeWindow(campaign.runs[r], pmm.runs[r].window.begin, pmm.runs[r].window.end));
   }
   for (const std::string& w : fit.warnings) fmt::print("warning: {}\n", w);
+  if (interaction) PrintInteraction(*interaction);
   fmt::print("  written: {}\n  written: {}\n", yaml_path.string(), h5_path.string());
 }
 

@@ -98,7 +98,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadCampaign{"campaign: {name: a, ship: s.yaml, solver: cfd}\ncfd: {case: c.yaml, motion_ramp_periods: 3}\n"
                     "tests: {pure_yaw_r_prime: [0.3]}\nsampling: {periods: 2, ramp_periods: 2}\n",
                     "key 'cfd.motion_ramp_periods' = '3': expected a number of periods from 0 to "
-                    "sampling.ramp_periods = 2"}));
+                    "sampling.ramp_periods = 2"},
+        BadCampaign{"campaign: {name: a, ship: s.yaml}\ntests: {static_drift_deg: [0], appendages: {ship: w.yaml, "
+                    "propeller_rate: 60}}\n",
+                    "expected no appendages: runs with the propeller and rudder need solver: cfd"},
+        BadCampaign{"campaign: {name: a, ship: s.yaml, solver: cfd}\ncfd: {case: c.yaml}\ntests: {static_drift_deg: "
+                    "[0], appendages: {ship: w.yaml, propeller_rate: 60, rudder_deg: [10, 0]}}\n",
+                    "key 'tests.appendages.rudder_deg' = (a list): expected non-zero angles"},
+        BadCampaign{"campaign: {name: a, ship: s.yaml, solver: cfd}\ncfd: {case: c.yaml}\ntests: {static_drift_deg: "
+                    "[0], appendages: {ship: w.yaml, propeller_rate: -60}}\n",
+                    "key 'tests.appendages.propeller_rate' = '-60'"},
+        BadCampaign{"campaign: {name: a, ship: s.yaml, solver: cfd}\ncfd: {case: c.yaml}\ntests: {static_drift_deg: "
+                    "[0], appendages: {ship: w.yaml, propeller_rate: 60, rudder: [10]}}\n",
+                    "unknown key 'tests.appendages.rudder'"}));
 
 }  // namespace
 }  // namespace kelvin::data
