@@ -18,7 +18,7 @@ those sources; the BENCHMARKS section is rendered from every stored result,
 so each row may come from a different session. The reader sources of a target
 are what its fuzz binary is compiled from: the sources and headers of its
 objects (from ninja's dependency log of the fuzz build), inside this
-repository. --skip-reached runs only the targets without a stored run that
+repository; a target whose binary is older than one of them is not run. --skip-reached runs only the targets without a stored run that
 reached its count on the reader sources as they are now (same digest).
 
 A new run replaces the stored one of its target, except that a run that did
@@ -151,6 +151,14 @@ def reader_state(build, target):
     dirty = bool(git("status", "--porcelain", "--", *files)) if files else False
     return {"reader_digest": h.hexdigest()[:16] if files else "", "reader_commit": commit,
             "reader_dirty": dirty, "reader_files": len(files)}
+
+
+def stale_sources(build, target):
+    """Reader sources edited after the target's binary was linked (the digest would not be what it runs)."""
+    binary = os.path.join(build, "tests/fuzz", target + "_fuzzer")
+    built = os.path.getmtime(binary)
+    return [f for f in reader_files(build, target)
+            if os.path.exists(os.path.join(SOURCE, f)) and os.path.getmtime(os.path.join(SOURCE, f)) > built]
 
 
 # ---------------------------------------------------------------------------
@@ -298,6 +306,13 @@ def run_campaign(build, order, budget, parallel, work, results_path, until=None,
                     seconds = min(seconds, to_go)
                 promised[t] = time.monotonic() + seconds
                 print(f"{t}: started at {datetime.datetime.now(datetime.timezone.utc):%H:%M:%S} UTC", flush=True)
+            stale = stale_sources(build, t)
+            if stale:
+                print(f"{t}: skipped, its binary is older than {', '.join(stale[:3])}"
+                      f"{' ...' if len(stale) > 3 else ''}: rebuild the fuzz build", flush=True)
+                with lock:
+                    promised.pop(t)
+                continue
             state = reader_state(build, t)
             r = fuzz(build, t, required_runs(t), seconds, work)
             date = datetime.datetime.now(datetime.timezone.utc)
@@ -340,7 +355,8 @@ def section(stored, targets, build, current, notes):
         "AddressSanitizer + UBSan (every report aborts), one target at a time under `nice -n 19` on the shared "
         "2-core machine. The acceptance count is 10 million executions for the hull, polyMesh and YAML "
         "readers, 1 million for the others. \"Changed since\": the reader sources (the sources and headers "
-        "its fuzz binary is compiled from) differ from those of the run.\n",
+        "its fuzz binary is compiled from) differ from those of the run. Every input that crashed a target during "
+        "development is replayed by ctest (`fuzz_<target>_regressions`, from tests/fuzz/regressions/).\n",
         "| target | executions | count | reached | exec/s | time (s) | corpus | crashes | leaks | UB | date | commit | changed since |",
         "|---|---:|---:|:---:|---:|---:|---:|---:|---:|---:|---|---|:---:|",
     ]
