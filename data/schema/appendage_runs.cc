@@ -63,8 +63,9 @@ std::vector<AppendageTest> PlanAppendageTests(const AppendageDesign& d, double U
     out.push_back({fmt::format("prop_drift_{:+.1f}deg", b * deg), U * std::cos(b), -U * std::sin(b), 0, 0, n});
   }
   for (const auto& c : d.circular) {
-    out.push_back({fmt::format("prop_circular_{:+.1f}deg_r{:.3f}", c.beta * deg, c.r_prime), U * std::cos(c.beta),
-                   -U * std::sin(c.beta), c.r_prime * U / Lpp, 0, n});
+    std::string name = fmt::format("prop_circular_{:+.1f}deg_r{:.3f}", c.beta * deg, c.r_prime);
+    if (c.rate_factor != 1.0) name += fmt::format("_x{:.3f}", c.rate_factor);
+    out.push_back({name, U * std::cos(c.beta), -U * std::sin(c.beta), c.r_prime * U / Lpp, 0, c.rate_factor * n});
   }
   return out;
 }

@@ -21,7 +21,8 @@
 //       rate_factors: [0.8, 1.25]       # more straight-ahead runs at delta = 0, at these x rate
 //       rudder_deg: [-35, -20, -10, 10, 20, 35]   # straight ahead (and one at 0 always)
 //       drift_deg: [-8, -4, 4, 8]       # rudder amidships
-//       circular: [{drift_deg: 0, r_prime: 0.3}]  # rudder amidships
+//       circular: [{drift_deg: 0, r_prime: 0.3}]  # rudder amidships; rate_factor: 2 (default 1)
+//                                       # also sets the propeller rate of a circular run
 #pragma once
 
 #include <array>
@@ -71,6 +72,7 @@ struct AppendageDesign {
   std::vector<double> drift_angles;   // rad
   struct Circular {
     double beta = 0, r_prime = 0;
+    double rate_factor = 1.0;  // of propeller_rate
   };
   std::vector<Circular> circular;
 };

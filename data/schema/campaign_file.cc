@@ -60,17 +60,22 @@ void ReadSettle(const ConfigNode& n, CampaignFile::Cfd& cfd) {
 }
 
 // Circular motion (rotating arm) runs: circular: [{drift_deg: 0, r_prime: 0.3}, ...]
-// as (beta in rad, r').
-std::vector<std::pair<double, double>> Circular(const ConfigNode& tests) {
-  std::vector<std::pair<double, double>> out;
+// as (beta in rad, r', rate factor); `rate_factor` (default 1) only with `rates`.
+std::vector<std::array<double, 3>> Circular(const ConfigNode& tests, bool rates) {
+  std::vector<std::array<double, 3>> out;
   if (auto circ = tests.Find("circular")) {
     for (const auto& item : circ->Items()) {
-      item.ExpectKeys({"drift_deg", "r_prime"});
+      if (rates) {
+        item.ExpectKeys({"drift_deg", "r_prime", "rate_factor"});
+      } else {
+        item.ExpectKeys({"drift_deg", "r_prime"});
+      }
       const double beta = item.Get<double>("drift_deg", 0.0);
       if (std::abs(beta) >= 90) item["drift_deg"].Fail("an angle in degrees with |angle| < 90");
       const double r = item.Get<double>("r_prime");
       if (!(std::isfinite(r) && r != 0)) item["r_prime"].Fail("a non-zero yaw rate r' = r Lpp / U");
-      out.emplace_back(beta * kDeg, r);
+      const double rate = item.Has("rate_factor") ? item.GetPositive("rate_factor") : 1.0;
+      out.push_back({beta * kDeg, r, rate});
     }
   }
   return out;
@@ -89,7 +94,7 @@ AppendageDesign ReadAppendages(const ConfigNode& a, const std::filesystem::path&
     if (x == 0.0) a["rudder_deg"].Fail("non-zero angles (the run at 0 is always made)");
   }
   d.drift_angles = Degrees(a, "drift_deg");
-  for (const auto& [beta, r] : Circular(a)) d.circular.push_back({beta, r});
+  for (const auto& [beta, r, rate] : Circular(a, true)) d.circular.push_back({beta, r, rate});
   return d;
 }
 
@@ -134,7 +139,7 @@ CampaignFile LoadCampaignFile(const ConfigNode& root, const std::filesystem::pat
   f.design.yaw_drift_amplitude = t.Get<double>("yaw_drift_r_prime", 0.4);
   f.design.omega_prime = t.Get<double>("omega_prime", 3.0);
   if (!(f.design.omega_prime > 0)) t["omega_prime"].Fail("a positive nondimensional frequency");
-  for (const auto& [beta, r] : Circular(t)) f.design.circular.push_back({beta, r});
+  for (const auto& [beta, r, rate] : Circular(t, false)) f.design.circular.push_back({beta, r});
   if (f.design.drift_angles.empty() && f.design.sway_amplitudes.empty() && f.design.yaw_amplitudes.empty() &&
       f.design.yaw_drift_angles.empty() && f.design.circular.empty()) {
     t.Fail("at least one test (static_drift_deg, pure_sway_v_prime, pure_yaw_r_prime, yaw_drift_deg or circular)");

@@ -71,7 +71,7 @@ data::AppendageDesign FullDesign() {
   d.rate_factors = {0.8, 1.25};
   d.rudder_angles = {-35 * kDeg, -20 * kDeg, -10 * kDeg, 10 * kDeg, 20 * kDeg, 35 * kDeg};
   d.drift_angles = {-6 * kDeg, 6 * kDeg};
-  d.circular = {{0.0, 0.3}, {0.0, -0.3}, {0.0, 0.6}, {6 * kDeg, 0.6}, {-6 * kDeg, -0.6}};
+  d.circular = {{0.0, 0.3}, {0.0, -0.3}, {0.0, 0.6}, {6 * kDeg, 0.6}, {-6 * kDeg, -0.6}, {6 * kDeg, 0.6, 1.5}};
   return d;
 }
 
