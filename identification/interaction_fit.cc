@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "data/schema/errors.h"
+#include "simulator/mmg/derivative_set.h"
 
 namespace kelvin::ident {
 namespace {
@@ -67,22 +68,19 @@ std::pair<double, double> SlopeThroughOrigin(const std::vector<double>& x, const
 
 class Fit {
  public:
-  Fit(const data::AppendageCampaign& c, const InteractionFitOptions& o, const std::string& source)
-      : c_(c), o_(o), source_(source) {
+  Fit(const data::AppendageCampaign& c, const InteractionFitOptions& o, const std::string& source) : c_(c), o_(o) {
     for (const AppendageRun& r : c.runs) {
       if (!(r.u > 0.0)) {
         throw InputError(fmt::format("{}: appendage run '{}': u = {}: expected forward speed", source, r.name, r.u));
       }
     }
-    const auto& pp = o.propeller;
-    const auto& rp = o.rudder;
-    for (auto [name, value] : {std::pair{"t_P", pp.t_P}, {"w_P0", pp.w_P0}, {"epsilon", rp.epsilon},
-                               {"kappa", rp.kappa}, {"gamma_R_minus", rp.gamma_R_minus},
-                               {"gamma_R_plus", rp.gamma_R_plus}, {"l_R_prime", rp.l_R_prime}, {"t_R", rp.t_R},
-                               {"a_H", rp.a_H}, {"x_H_prime", rp.x_H_prime}, {"f_alpha", rp.f_alpha}}) {
+    sim::PropellerParameters pp = o.propeller;
+    sim::RudderParameters rp = o.rudder;
+    const auto ship = sim::InteractionFields(pp, rp);
+    for (std::size_t i = 0; i < sim::kInteractionKeys.size(); ++i) {
       InteractionCoefficient k;
-      k.name = name;
-      k.value = k.ship = value;
+      k.name = sim::kInteractionKeys[i];
+      k.value = k.ship = *ship[i];
       out_.coefficients.push_back(k);
     }
   }
@@ -251,7 +249,6 @@ class Fit {
 
   const data::AppendageCampaign& c_;
   const InteractionFitOptions& o_;
-  std::string source_;
   InteractionFitResult out_;
 };
 

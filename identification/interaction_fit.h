@@ -60,8 +60,7 @@ struct InteractionCoefficient {
 };
 
 struct InteractionFitResult {
-  std::vector<InteractionCoefficient> coefficients;  // t_P, w_P0, epsilon, kappa, gamma_R_minus, gamma_R_plus,
-                                                      // l_R_prime, t_R, a_H, x_H_prime, f_alpha
+  std::vector<InteractionCoefficient> coefficients;  // in sim::kInteractionKeys order
   std::vector<std::string> warnings;
   const InteractionCoefficient& Get(const std::string& name) const;
   // The identified ones, as a derivative set's `interaction:` section.

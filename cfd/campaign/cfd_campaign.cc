@@ -13,6 +13,7 @@
 #include <fstream>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <thread>
 
 #include "cfd/campaign/appendage_run.h"
@@ -404,6 +405,27 @@ Resume ReadResume(const Job& job) {
 // budget ran out first.
 bool ExecuteAppendageJob(Context& ctx, Job& job);
 
+// Runs a job's case through the driver with the campaign's checkpoints
+// (<dir>/checkpoint.h5) and step budget, restarting from `restart` if set;
+// sets job.step. Empty when the budget ran out first; a diverged run throws.
+std::optional<RunDriverSummary> DriveJob(const Context& ctx, Job& job, Case& c, std::span<Monitor* const> monitors,
+                                         const fs::path& restart) {
+  RunDriverOptions o;
+  o.restart = restart;
+  o.checkpoint = job.dir / "checkpoint.h5";
+  o.checkpoint_interval = ctx.file.cfd.checkpoint_interval;
+  o.checkpoint_at_end = false;
+  o.step_budget = ctx.budget > 0 ? ctx.budget - ctx.computed : 0;
+  o.progress = false;
+  const RunDriverSummary d = RunDriver(c, monitors, o);
+  if (d.status == RunDriverSummary::Status::kDiverged) {
+    throw RunDivergedError(fmt::format("run '{}' {}", job.name, d.message));
+  }
+  if (d.status == RunDriverSummary::Status::kStopped) return std::nullopt;
+  job.step = c.solver->step();
+  return d;
+}
+
 bool ExecuteJob(Context& ctx, Job& job) {
   if (ctx.budget > 0 && ctx.computed >= ctx.budget) return false;  // as if killed here
   if (job.appendage) return ExecuteAppendageJob(ctx, job);
@@ -426,22 +448,13 @@ bool ExecuteJob(Context& ctx, Job& job) {
   CaptiveSampler sampler(c, c.force_patches, scales);
   Resume resume = ReadResume(job);
   resume.cost.cells = c.mesh->n_cells();
-  RunDriverOptions o;
   sampler.Restore(std::move(resume.samples));
   JobFiles files(ctx, job, &sampler, resume.cost);
   Monitor* monitors[] = {&sampler, &files};
-  o.restart = resume.restart ? checkpoint : fs::path();
-  o.checkpoint = checkpoint;
-  o.checkpoint_interval = ctx.file.cfd.checkpoint_interval;
-  o.checkpoint_at_end = false;
-  o.step_budget = ctx.budget > 0 ? ctx.budget - ctx.computed : 0;
-  o.progress = false;
-  const RunDriverSummary d = RunDriver(c, monitors, o);
-  if (d.status == RunDriverSummary::Status::kDiverged) {
-    throw RunDivergedError(fmt::format("run '{}' {}", job.name, d.message));
-  }
-  if (d.status == RunDriverSummary::Status::kStopped) return false;
-  job.step = c.solver->step();
+  const std::optional<RunDriverSummary> driven =
+      DriveJob(ctx, job, c, monitors, resume.restart ? checkpoint : fs::path());
+  if (!driven) return false;
+  const RunDriverSummary& d = *driven;
   Settle settle;
   if (job.settle) {
     settle.settled = d.steady.settled ? 1 : 0;
@@ -478,19 +491,7 @@ bool ExecuteAppendageJob(Context& ctx, Job& job) {
   cost.cells = c.mesh->n_cells();
   JobFiles files(ctx, job, nullptr, cost);
   Monitor* monitors[] = {&coupler, &sampler, &files};
-  RunDriverOptions o;
-  o.restart = fs::exists(checkpoint) ? checkpoint : fs::path();
-  o.checkpoint = checkpoint;
-  o.checkpoint_interval = ctx.file.cfd.checkpoint_interval;
-  o.checkpoint_at_end = false;
-  o.step_budget = ctx.budget > 0 ? ctx.budget - ctx.computed : 0;
-  o.progress = false;
-  const RunDriverSummary d = RunDriver(c, monitors, o);
-  if (d.status == RunDriverSummary::Status::kDiverged) {
-    throw RunDivergedError(fmt::format("run '{}' {}", job.name, d.message));
-  }
-  if (d.status == RunDriverSummary::Status::kStopped) return false;
-  job.step = c.solver->step();
+  if (!DriveJob(ctx, job, c, monitors, fs::exists(checkpoint) ? checkpoint : fs::path())) return false;
   const double from = ctx.file.cfd.steady_ramp + 0.5 * ctx.file.cfd.steady_duration - 0.5 * job.dt;
   files.WriteAppendageResult(sampler.Mean(*job.appendage, from));
   std::error_code ec;

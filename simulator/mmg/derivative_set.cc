@@ -1,5 +1,6 @@
 #include "simulator/mmg/derivative_set.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -52,18 +53,17 @@ DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesys
   return set;
 }
 
+std::array<double*, kInteractionKeys.size()> InteractionFields(PropellerParameters& pp, RudderParameters& rp) {
+  return {&pp.t_P,          &pp.w_P0,        &rp.epsilon, &rp.kappa, &rp.gamma_R_minus, &rp.gamma_R_plus,
+          &rp.l_R_prime,    &rp.t_R,         &rp.a_H,     &rp.x_H_prime, &rp.f_alpha};
+}
+
 void ApplyInteraction(const std::map<std::string, double>& interaction, ShipParameters& ship) {
-  PropellerParameters& pp = ship.propeller;
-  RudderParameters& rp = ship.rudder;
-  const std::map<std::string, double*> targets = {
-      {"t_P", &pp.t_P},       {"w_P0", &pp.w_P0},         {"epsilon", &rp.epsilon},
-      {"kappa", &rp.kappa},   {"gamma_R_minus", &rp.gamma_R_minus}, {"gamma_R_plus", &rp.gamma_R_plus},
-      {"l_R_prime", &rp.l_R_prime}, {"t_R", &rp.t_R},     {"a_H", &rp.a_H},
-      {"x_H_prime", &rp.x_H_prime}, {"f_alpha", &rp.f_alpha}};
+  const auto fields = InteractionFields(ship.propeller, ship.rudder);
   for (const auto& [key, value] : interaction) {
-    const auto it = targets.find(key);
-    KELVIN_CHECK(it != targets.end(), "an interaction key of kInteractionKeys");
-    *it->second = value;
+    const auto it = std::find(kInteractionKeys.begin(), kInteractionKeys.end(), key);
+    KELVIN_CHECK(it != kInteractionKeys.end(), "an interaction key of kInteractionKeys");
+    *fields[static_cast<std::size_t>(it - kInteractionKeys.begin())] = value;
   }
 }
 

@@ -50,6 +50,9 @@ struct DerivativeSet {
 inline constexpr std::array<const char*, 11> kInteractionKeys = {
     "t_P", "w_P0", "epsilon", "kappa", "gamma_R_minus", "gamma_R_plus", "l_R_prime", "t_R", "a_H", "x_H_prime",
     "f_alpha"};
+// The propeller's and rudder's fields of kInteractionKeys, in that order.
+std::array<double*, kInteractionKeys.size()> InteractionFields(PropellerParameters& propeller,
+                                                               RudderParameters& rudder);
 // Replaces the ship's values of the keys in `interaction` (each one of kInteractionKeys).
 void ApplyInteraction(const std::map<std::string, double>& interaction, ShipParameters& ship);
 
