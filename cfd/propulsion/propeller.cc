@@ -83,7 +83,8 @@ void Propeller::Apply(double thrust, double torque, double rho, const Eigen::Mat
 }
 
 PropellerState Propeller::Update(const PimpleSolver& solver, const BodyVelocity& body_velocity,
-                                 const Eigen::Matrix3d& R, double n, double rho, std::vector<Vector3>& cell_source) {
+                                 const Eigen::Matrix3d& R, double n, double rho, std::vector<Vector3>& cell_source,
+                                 bool start_up) {
   if (!(n > 0) || !std::isfinite(n)) {
     throw ConfigError(fmt::format("{}.n = {} 1/s: expected a positive rate (the open-water table is the first "
                                   "quadrant)",
@@ -93,8 +94,15 @@ PropellerState Propeller::Update(const PimpleSolver& solver, const BodyVelocity&
   PropellerState s;
   s.n = n;
   s.U_disk = disk_.DiskVelocity(solver.U(), body_velocity, R);
-  s.U_A = EffectiveInflow(s.U_disk, state_.thrust, rho);
-  s.J = s.U_A / (n * D);
+  if (start_up) {
+    s.U_A = s.U_disk > 0 ? EffectiveInflow(s.U_disk, state_.thrust, rho) : 0.0;
+    const double J = s.U_A / (n * D);
+    s.J = std::clamp(J, curve_.J_min(), curve_.J_max());
+    s.clamped = s.J != J || !(s.U_disk > 0);
+  } else {
+    s.U_A = EffectiveInflow(s.U_disk, state_.thrust, rho);
+    s.J = s.U_A / (n * D);
+  }
   if (!curve_.Covers(s.J)) {
     throw ConfigError(fmt::format(
         "{}.open_water: J = {:.6g} (U_A = {:.6g} m/s, U_disk = {:.6g} m/s, n = {} 1/s, D = {} m) is outside the "

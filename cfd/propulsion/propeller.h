@@ -74,6 +74,7 @@ struct PropellerState {
   double K_Q = 0.0;
   double T = 0.0;       // thrust on the propeller, along the axis (N)
   double Q = 0.0;       // torque on the water, about sense x axis (N m)
+  bool clamped = false; // start-up only: J was outside the table and was held at its end
 };
 
 class Propeller {
@@ -85,8 +86,13 @@ class Propeller {
   // empty vector is sized first) for the placement rotation R. Throws
   // ConfigError naming <name>.open_water, the J and the table's range when
   // J leaves the table (or when the flow through the disk is reversed).
+  // With start_up, a J outside the table is held at the table's end instead
+  // (J_min when the flow through the disk is reversed, or when the quasi-
+  // steady inflow correction removes more than the flow through the disk:
+  // the flow has not yet taken up the disk's induced velocity, so the
+  // propeller works as at bollard pull), and the state says clamped.
   PropellerState Update(const PimpleSolver& solver, const BodyVelocity& body_velocity, const Eigen::Matrix3d& R,
-                        double n, double rho, std::vector<Vector3>& cell_source);
+                        double n, double rho, std::vector<Vector3>& cell_source, bool start_up = false);
   // Fixed load: the prescribed T and Q (J, K_T, K_Q are reported as 0; n
   // is kept), with the same U_disk and U_A diagnostics.
   PropellerState UpdateFixedLoad(const PimpleSolver& solver, const BodyVelocity& body_velocity,

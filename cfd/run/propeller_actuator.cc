@@ -109,20 +109,15 @@ void PropellerActuator::Update(const PimpleSolver& solver, const FreeBody& body,
   const Vector3 V = pose.Velocity(), W = pose.AngularVelocity();
   const auto x = solver.mesh().cell_centres();
   auto body_velocity = [&](int c) { return Vector3(V + W.cross(x[c] - centre)); };
-  if (t_ <= options_.ramp_time) {
-    // Start-up: the flow at the stern may still run ahead of the hull or
-    // outside the table; no thrust until it is inside.
-    try {
-      last_ = propeller_.Update(solver, body_velocity, R, n_, rho_, cell_source);
-    } catch (const ConfigError& e) {
-      if (!warned_) spdlog::info("propeller idle during the start-up ramp at t = {:.4g} s: {}", t_, e.what());
-      warned_ = true;
-      last_ = {};
-      last_.n = n_;
-      return;
-    }
-  } else {
-    last_ = propeller_.Update(solver, body_velocity, R, n_, rho_, cell_source);
+  const bool start_up = t_ <= options_.ramp_time;
+  last_ = propeller_.Update(solver, body_velocity, R, n_, rho_, cell_source, start_up);
+  if (last_.clamped && !warned_) {
+    // Start-up: the flow at the stern may still run ahead of the hull, or not
+    // yet carry the disk's induced velocity; J is held inside the table.
+    spdlog::info("propeller start-up at t = {:.4g} s: J held at {:.4g}, the end of the open-water table (U_A = "
+                 "{:.4g} m/s, U_disk = {:.4g} m/s, n = {:.4g} 1/s), until the flow takes up the disk's load",
+                 t_, last_.J, last_.U_A, last_.U_disk, n_);
+    warned_ = true;
   }
   applied_ = true;
   load.X += last_.T;

@@ -719,6 +719,52 @@ TEST(PropellerErrors, ReversedFlowAndBadRate) {
   }
 }
 
+// In the start-up ramp a J outside the table is held at its end: J_min
+// (bollard pull, K_T(0)) for reversed flow and for a correction that removes
+// more than the flow through the disk carries, J_max for a light disk. After
+// the ramp the same states are errors (PropellerErrors above).
+TEST(PropellerStartUp, JOutsideTheTableIsHeldAtItsEnd) {
+  const Mesh mesh = UniformBox(20);
+  const sim::OpenWaterCurve curve = Kp505();
+  const double D = HoughOrdwayDisk().diameter, n = 1.0, rho = 1.0;
+  std::vector<Vector3> source;
+  {
+    Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
+    const PropellerState s =
+        prop.Update(*UniformFlow(mesh, -0.5), nullptr, Eigen::Matrix3d::Identity(), n, rho, source, true);
+    EXPECT_TRUE(s.clamped);
+    EXPECT_EQ(s.U_A, 0.0);
+    EXPECT_EQ(s.J, curve.J_min());
+    EXPECT_DOUBLE_EQ(s.T, rho * n * n * std::pow(D, 4) * curve.KT(curve.J_min()));
+  }
+  {
+    // A heavy load from the last step over a slow stream: U_A < 0 from the
+    // momentum correction.
+    Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
+    prop.SetState({10.0, 0.0, n});
+    const PropellerState s =
+        prop.Update(*UniformFlow(mesh, 0.05), nullptr, Eigen::Matrix3d::Identity(), n, rho, source, true);
+    EXPECT_LT(s.U_A, 0.0);
+    EXPECT_TRUE(s.clamped);
+    EXPECT_EQ(s.J, curve.J_min());
+  }
+  {
+    Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
+    const PropellerState s =
+        prop.Update(*UniformFlow(mesh, 2.0), nullptr, Eigen::Matrix3d::Identity(), n, rho, source, true);
+    EXPECT_TRUE(s.clamped);
+    EXPECT_EQ(s.J, curve.J_max());
+  }
+  {
+    Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
+    const PropellerState s =
+        prop.Update(*UniformFlow(mesh, 0.8), nullptr, Eigen::Matrix3d::Identity(), 1.2, rho, source, true);
+    EXPECT_FALSE(s.clamped);  // inside the table: the same as after the ramp
+    Propeller after(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
+    EXPECT_EQ(s.J, after.Update(*UniformFlow(mesh, 0.8), nullptr, Eigen::Matrix3d::Identity(), 1.2, rho, source).J);
+  }
+}
+
 TEST(PropellerErrors, BadOptionsAndTable) {
   const Mesh mesh = UniformBox(10);
   PropellerOptions po;
