@@ -1,9 +1,7 @@
 #include "cfd/campaign/cfd_campaign.h"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <spawn.h>
-#include <sys/file.h>
+#include <spdlog/spdlog.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,6 +15,7 @@
 #include <thread>
 
 #include "cfd/campaign/appendage_run.h"
+#include "cfd/campaign/worker_process.h"
 #include "cfd/run/captive_sampler.h"
 #include "cfd/run/run_driver.h"
 #include "data/report/progress.h"
@@ -28,7 +27,6 @@
 #include "data/schema/h5_file.h"
 #include "simulator/mmg/ship_parameters.h"
 
-extern char** environ;
 
 namespace kelvin::cfd {
 namespace {
@@ -64,6 +62,7 @@ struct Job {
   int step = 0;
   std::string message;
   pid_t pid = -1;
+  int starts = 0;  // worker processes started (DiedStartingMpi)
 };
 
 PrescribedMotion ToPrescribed(data::MotionKind kind) {
@@ -304,28 +303,6 @@ std::vector<int> HullPatches(const Context& ctx, const Case& c) {
   return out;
 }
 
-// An exclusive lock on a run directory, so that two processes (a rerun while
-// orphaned workers of a killed parent still run) never work on one run.
-class RunLock {
- public:
-  explicit RunLock(const Job& job) {
-    const fs::path path = job.dir / "lock";
-    fd_ = ::open(path.c_str(), O_CREAT | O_RDWR, 0644);
-    if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      if (fd_ >= 0) ::close(fd_);
-      throw InputError(fmt::format(
-          "run '{}' is being computed by another process (lock {}); wait for it or stop it",
-          job.name, path.string()));
-    }
-  }
-  ~RunLock() { ::close(fd_); }
-  RunLock(const RunLock&) = delete;
-  RunLock& operator=(const RunLock&) = delete;
-
- private:
-  int fd_ = -1;
-};
-
 // The run's own files beside the driver's checkpoint: the samples (written
 // before the state, so that a checkpoint never runs ahead of them), the
 // cost so far and the progress file; the progress table after each step.
@@ -435,7 +412,7 @@ bool ExecuteJob(Context& ctx, Job& job) {
   overrides.end_time = job.dt * job.steps;
   overrides.steady = job.settle;
   fs::create_directories(job.dir);
-  const RunLock lock(job);
+  const RunLock lock(job.dir, job.name);
   data::RemoveStaleTemporaries(job.dir);  // what a killed earlier attempt left half-written
   const fs::path checkpoint = job.dir / "checkpoint.h5";
   Case c = LoadCaseFile(ctx.file.cfd.case_file, overrides);
@@ -480,7 +457,7 @@ bool ExecuteAppendageJob(Context& ctx, Job& job) {
   overrides.end_time = job.dt * job.steps;
   overrides.output = job.dir;
   fs::create_directories(job.dir);
-  const RunLock lock(job);
+  const RunLock lock(job.dir, job.name);
   data::RemoveStaleTemporaries(job.dir);
   const fs::path checkpoint = job.dir / "checkpoint.h5";
   Case c = LoadAppendageCase(ctx.file, *job.appendage, overrides);
@@ -507,35 +484,9 @@ void ReadProgressFile(Job& job) {
   if (in >> step >> steps) job.step = step;
 }
 
-pid_t SpawnWorker(const data::CampaignFile& f, const fs::path& exe, Job& job) {
-  fs::create_directories(job.dir);
-  const std::string log = (job.dir / "log.txt").string();
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<std::string> args = {exe.string(), "--quiet", "captive",      f.path.string(),
-                                   "--run",      job.name,  "--no-progress"};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0)
-    throw InputError(
-        fmt::format("cannot start {} for run '{}' (error {})", exe.string(), job.name, rc));
-  return pid;
-}
-
-std::string LastLine(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line)) {
-    if (!line.empty()) last = line;
-  }
-  return last;
+pid_t StartWorker(const data::CampaignFile& f, const fs::path& exe, Job& job) {
+  return SpawnWorker(exe, {"--quiet", "captive", f.path.string(), "--run", job.name, "--no-progress"},
+                     job.dir / "log.txt", job.name);
 }
 
 // --- the campaign ------------------------------------------------------------
@@ -679,8 +630,9 @@ int StartWorkers(const data::CampaignFile& f, const fs::path& exe, int slots,
   for (Job& j : jobs) {
     if (started >= slots) break;
     if (j.state != Job::State::kLeft) continue;
-    j.pid = SpawnWorker(f, exe, j);
+    j.pid = StartWorker(f, exe, j);
     j.state = Job::State::kRunning;
+    ++j.starts;
     ++started;
   }
   return started;
@@ -699,6 +651,9 @@ int FinishWorker(pid_t pid, int status, std::vector<Job>& jobs, CampaignRunSumma
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(j.dir / "result.h5")) {
       j.state = Job::State::kDone;
       j.step = j.steps;
+    } else if (j.starts < kWorkerStartAttempts && DiedStartingMpi(j.dir / "log.txt")) {
+      spdlog::warn("run '{}': its worker died while MPI started up; starting it again", j.name);
+      j.state = Job::State::kLeft;
     } else {
       j.state = Job::State::kFailed;
       j.message = LastLine(j.dir / "log.txt");

@@ -390,7 +390,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   // placed yet); the rudder samples the flow behind the propeller.
   if (auto propeller = LoadPropellerActuator(c, root)) c.actuators.push_back(std::move(propeller));
   if (auto rudder = LoadRudderActuator(c, root)) c.actuators.push_back(std::move(rudder));
-  c.maneuver = LoadManeuverPilot(root, c, s.output.directory);
+  c.maneuver = LoadManeuverPilot(root, c, s.output.directory, overrides.maneuver);
   return c;
 }
 

@@ -103,6 +103,7 @@ struct CaseOverrides {
   std::filesystem::path poly_mesh;      // non-empty: replaces mesh.poly_mesh
   std::filesystem::path output;         // non-empty: replaces output.directory
   std::optional<SteadyOptions> steady;  // replaces time.steady (window in seconds)
+  std::string maneuver;                 // non-empty: replaces maneuver.kind (kelvin run -m)
 };
 
 Case LoadCase(const data::ConfigNode& root, const std::filesystem::path& case_dir,

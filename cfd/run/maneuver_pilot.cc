@@ -24,16 +24,23 @@ T* FindActuator(const Case& c) {
 }  // namespace
 
 std::optional<ManeuverPilotSettings> LoadManeuverPilot(const data::ConfigNode& root, const Case& c,
-                                                       const std::filesystem::path& output_directory) {
-  if (!root.Has("maneuver")) return std::nullopt;
+                                                       const std::filesystem::path& output_directory,
+                                                       const std::string& kind_override) {
+  if (!root.Has("maneuver")) {
+    if (kind_override.empty()) return std::nullopt;
+    throw ArgumentError(fmt::format("--maneuver {}: the case {} has no maneuver: section; expected a free-running "
+                                    "case with maneuver: {{kind, execute_time}}",
+                                    kind_override, root.source()));
+  }
   const data::ConfigNode node = root["maneuver"];
   node.ExpectKeys({"kind", "execute_time", "output"});
   if (!c.free_running) node.Fail("no maneuver: section without motion: {kind: free} (a maneuver needs a free body)");
   ManeuverPilotSettings s;
   const data::ConfigNode kind = node["kind"];
   try {
-    s.spec = sim::ManeuverSpec::Parse(kind.As<std::string>());
+    s.spec = sim::ManeuverSpec::Parse(kind_override.empty() ? kind.As<std::string>() : kind_override);
   } catch (const ArgumentError& e) {
+    if (!kind_override.empty()) throw ArgumentError(fmt::format("--maneuver {}: {}", kind_override, e.what()));
     kind.Fail(fmt::format("a maneuver definition ({})", e.what()));
   }
   if (s.spec.kind == sim::ManeuverSpec::Kind::kStopping) {
@@ -118,6 +125,8 @@ void ManeuverPilot::AddCheckpointArrays(CheckpointArrays& arrays) const {
     samples.insert(samples.end(), {q.t, q.x, q.y, q.psi, q.u, q.v, q.r, q.delta, q.n});
     phases.push_back(trajectory_.phases()[i]);
   }
+  const std::string spec = settings_.spec.ToString();
+  arrays["maneuver_spec"] = std::vector<double>(spec.begin(), spec.end());
   arrays["maneuver_trajectory"] = std::move(samples);
   arrays["maneuver_phases"] = std::move(phases);
   if (started_) arrays["maneuver_controller"] = controller_.Pack();
@@ -146,6 +155,13 @@ void ManeuverPilot::RestoreArrays(const CheckpointArrays& arrays) {
     }
     return it->second;
   };
+  const std::vector<double>& code = get("maneuver_spec");
+  const std::string spec(code.begin(), code.end());
+  if (spec != settings_.spec.ToString()) {
+    throw DataFileError(fmt::format("the checkpoint is of maneuver '{}'; the case flies maneuver '{}' (restart it "
+                                    "with the case and maneuver it was written by)",
+                                    spec, settings_.spec.ToString()));
+  }
   const std::vector<double>& samples = get("maneuver_trajectory");
   const std::vector<double>& phases = get("maneuver_phases");
   if (samples.size() != kSampleFields * phases.size()) {

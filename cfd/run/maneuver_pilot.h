@@ -36,11 +36,14 @@ namespace kelvin::cfd {
 
 class PropellerActuator;
 
-// Reads the case's `maneuver:` section; nullopt without one. Throws
-// ConfigError for a maneuver the case cannot fly (no rudder: section, a
-// crash stop, an execute before the body is released) or a bad key.
+// Reads the case's `maneuver:` section; nullopt without one. A non-empty
+// `kind_override` (kelvin run -m) replaces its kind and needs the section.
+// Throws ConfigError for a maneuver the case cannot fly (no rudder: section,
+// a crash stop, an execute before the body is released) or a bad key, and
+// ArgumentError for an override the case has no maneuver: section for.
 std::optional<ManeuverPilotSettings> LoadManeuverPilot(const data::ConfigNode& root, const Case& c,
-                                                       const std::filesystem::path& output_directory);
+                                                       const std::filesystem::path& output_directory,
+                                                       const std::string& kind_override = {});
 
 class ManeuverPilot final : public Monitor, public sim::ManeuverPlant {
  public:

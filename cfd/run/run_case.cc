@@ -57,6 +57,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   CaseOverrides overrides;
   overrides.poly_mesh = options.poly_mesh_override;
   overrides.output = options.output_override;
+  overrides.maneuver = options.maneuver;
   Case c = LoadCaseFile(case_file, overrides);
   spdlog::info("mesh quality:\n{}", c.mesh->Quality().Report());
   fs::create_directories(c.settings.output.directory);

@@ -19,6 +19,7 @@ struct RunOptions {
   std::filesystem::path restart;             // checkpoint to continue from (empty: none)
   std::filesystem::path output_override;     // replaces output.directory when set
   std::filesystem::path poly_mesh_override;  // replaces mesh.poly_mesh when set (grid families)
+  std::string maneuver;                      // non-empty: replaces maneuver.kind (kelvin run -m)
   bool progress = true;
   // Polled after each step (RunDriverOptions::stop_requested): `kelvin run`
   // passes the SIGTERM / SIGINT it caught.

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cfd/campaign/worker_process.h"
 #include "cfd/run/run_case.h"
 #include "data/schema/campaign_file.h"
 #include "data/schema/captive_io.h"
@@ -186,6 +187,51 @@ TEST(CfdCampaign, ParallelWorkersGiveTheSameResult) {
   EXPECT_THAT(r.output, HasSubstr("5 done, 0 running, 0 left"));
   EXPECT_THAT(r.output, HasSubstr("ETA"));
   ExpectSameFile(a.output, tmp / "parallel/runs/block2d_cfd.h5");
+}
+
+// A worker that dies while MPI starts up (Open MPI's singleton, once under
+// load in CI) is started again and the campaign ends as an undisturbed one;
+// a worker that dies so every time fails after kWorkerStartAttempts.
+TEST(CfdCampaign, AWorkerThatDiesStartingMpiIsStartedAgain) {
+  ScopedTempDir tmp;
+  const data::CampaignFile serial = data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "serial"));
+  const CampaignRunSummary a = RunCfdCampaign(serial, Quiet());
+  ASSERT_TRUE(a.complete);
+  // The first `fails` starts die with Open MPI's message, the rest run kelvin.
+  auto flaky = [&](const std::string& name, int fails) {
+    const fs::path script = tmp / name;
+    std::ofstream(script) << "#!/bin/sh\n"
+                          << "n=$(cat " << (tmp / (name + ".starts")).string() << " 2>/dev/null | wc -l)\n"
+                          << "echo start >> " << (tmp / (name + ".starts")).string() << "\n"
+                          << "if [ \"$n\" -lt " << fails << " ]; then\n"
+                          << "  echo '[vm:1] Local abort before MPI_INIT completed completed successfully, but am not "
+                             "able to aggregate error messages'\n"
+                          << "  exit 1\nfi\n"
+                          << "exec " << (kelvin::testing::ToolsDir() / "kelvin").string() << " \"$@\"\n";
+    fs::permissions(script, fs::perms::owner_all);
+    return script;
+  };
+  const data::CampaignFile retried = data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "retried"));
+  CampaignRunOptions o = Quiet();
+  o.jobs = 2;
+  o.executable = flaky("twice", 2);
+  const CampaignRunSummary b = RunCfdCampaign(retried, o);
+  ASSERT_TRUE(b.complete);
+  ExpectSameFile(a.output, b.output);
+
+  const data::CampaignFile broken = data::LoadCampaignFile(WriteBlock2dCampaign(tmp / "broken"));
+  o.executable = flaky("always", 1000);
+  try {
+    RunCfdCampaign(broken, o);
+    FAIL() << "a worker that never starts MPI passed";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("runs failed"));
+    EXPECT_THAT(e.what(), HasSubstr("before MPI_INIT completed"));
+  }
+  std::ifstream log(tmp / "always.starts");
+  int starts = 0;
+  for (std::string line; std::getline(log, line);) ++starts;
+  EXPECT_EQ(starts, 5 * kWorkerStartAttempts);  // each of the 5 runs, kWorkerStartAttempts times
 }
 
 TEST(CfdCampaign, WritesTheCaptiveSchemaWithPhysicalDriftForces) {

@@ -30,12 +30,6 @@ struct CaptiveArgs {
   bool no_progress = false;
 };
 
-std::filesystem::path SelfExecutable() {
-  std::error_code ec;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path() : self;
-}
-
 void RunCfd(const data::CampaignFile& file, const CaptiveArgs& a) {
   cfd::CampaignRunOptions o;
   o.jobs = a.jobs;

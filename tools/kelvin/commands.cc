@@ -19,4 +19,10 @@ std::vector<Command> AddCommands(CLI::App& app) {
   return commands;
 }
 
+std::filesystem::path SelfExecutable() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path() : self;
+}
+
 }  // namespace kelvin::cli

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <functional>
 #include <vector>
 
@@ -28,5 +29,9 @@ Command AddListenCommand(CLI::App& app);
 
 // Every subcommand, in the order `kelvin --help` lists them.
 std::vector<Command> AddCommands(CLI::App& app);
+
+// The running kelvin program (/proc/self/exe; empty if unknown), which the
+// campaigns start as worker processes.
+std::filesystem::path SelfExecutable();
 
 }  // namespace kelvin::cli
