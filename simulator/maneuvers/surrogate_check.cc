@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <charconv>
@@ -260,23 +259,8 @@ SurrogateCheck RunSurrogateCheck(const SurrogateCheckOptions& o) {
   std::vector<ManeuverSpec> asked;
   for (const std::string& m : o.maneuvers) asked.push_back(ManeuverSpec::Parse(m));
 
-  const data::ConfigNode root = data::ConfigNode::LoadFile(o.derivatives);
-  const DerivativeSet set = LoadDerivativeSet(root, o.derivatives);
+  const DerivativeSet set = LoadDerivativeSet(o.derivatives);
   const ShipParameters file_ship = LoadShip(o.ship);
-  std::string set_ship;
-  if (const auto meta = root.Find("derivative_set")) {
-    if (const auto ship_key = meta->Find("ship")) {
-      set_ship = ship_key->As<std::string>();
-      if (set_ship != file_ship.name) {
-        ship_key->Fail(fmt::format("a derivative set of ship '{}', the ship of the ship file {}", file_ship.name,
-                                   o.ship.string()));
-      }
-    }
-  }
-  if (set_ship.empty()) {
-    spdlog::warn("derivative set {} names no ship (derivative_set.ship): its ship is not checked against {}",
-                 o.derivatives.string(), o.ship.string());
-  }
   const ShipParameters ship = SurrogateShip(file_ship, o.ship.string(), &set);
   const MmgModel<double> model(ship);
 
@@ -294,7 +278,7 @@ SurrogateCheck RunSurrogateCheck(const SurrogateCheckOptions& o) {
       throw ArgumentError(fmt::format(
           "--against {}: attribute 'ship' = '{}': expected a maneuver of ship '{}', the ship of {}the ship file {}",
           path.string(), r.ship_name, ship.name,
-          set_ship.empty() ? "" : fmt::format("the derivative set {} and of ", o.derivatives.string()),
+          set.ship.empty() ? "" : fmt::format("the derivative set {} and of ", o.derivatives.string()),
           o.ship.string()));
     }
     if (std::abs(r.Lpp - ship.principal.Lpp) > 1e-9 * ship.principal.Lpp) {

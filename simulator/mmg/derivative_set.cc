@@ -23,6 +23,10 @@ DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesys
   if (const auto meta = root.Find("derivative_set")) {
     meta->ExpectKeys({"name", "ship", "source"});
     set.name = meta->Get<std::string>("name", "");
+    if (const auto ship = meta->Find("ship")) {
+      set.ship = ship->As<std::string>();
+      set.ship_where = ship->Where();
+    }
   }
   const data::ConfigNode hull = root["hull"];
   std::vector<std::string> names;

@@ -41,6 +41,8 @@ struct DerivativeCheck {
 struct DerivativeSet {
   std::string file;
   std::string name;
+  std::string ship;        // derivative_set.ship: the ship it was identified for ("" if the set names none)
+  std::string ship_where;  // "file:line" of that key, for messages
   HullCoefficients<double> hull;
   std::map<std::string, double> interaction;  // the keys above
   std::optional<DerivativeCheck> check;

@@ -91,5 +91,26 @@ TEST(BridgeCheckedSet, ASetThatFailedKelvinCheckIsRefusedWithItsSummary) {
   EXPECT_EQ(LastLine(r.output), "kelvin: error: " + expected);
 }
 
+// A derivative set of another ship is refused by kelvin simulate and kelvin
+// bridge as by kelvin check (sim::SurrogateShip): one line naming the set's
+// key, its value and the ship file's ship.
+TEST(BridgeCheckedSet, ASetOfAnotherShipIsRefusedBySimulateAndBridge) {
+  const testing::ScopedTempDir dir;
+  const auto set = WriteSetFromShip(dir / "kvlcc2_set.yaml", "kvlcc2");
+  const std::string wigley = ShipFile("wigley").string();
+  const std::string expected = "kelvin: error: " + set.string() +
+                               ":4: key 'derivative_set.ship' = 'KVLCC2': expected a derivative set of ship "
+                               "'Wigley', the ship of the ship file " + wigley;
+  const auto simulate = testing::RunCommand(Kelvin() + " simulate " + wigley + " --derivatives " + set.string() +
+                                            " -m turning:35:stbd -o " + (dir / "sim").string());
+  EXPECT_EQ(simulate.exit_code, 1) << simulate.output;
+  EXPECT_EQ(LastLine(simulate.output), expected);
+  EXPECT_FALSE(fs::exists(dir / "sim/Wigley_turning_35_stbd.h5"));
+  const auto bridge = testing::RunCommand(Kelvin() + " bridge " + wigley + " --derivatives " + set.string() +
+                                          " --lcm-url memq:// --duration 1 --speedup 100");
+  EXPECT_EQ(bridge.exit_code, 1) << bridge.output;
+  EXPECT_EQ(LastLine(bridge.output), expected);
+}
+
 }  // namespace
 }  // namespace kelvin::bridge
