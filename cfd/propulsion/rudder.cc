@@ -17,6 +17,9 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 // Blade positions are tabulated every kAngleStep and blended linearly.
 constexpr double kAngleStep = 5.0 * kPi / 180.0;
+// Least share of the blade box inside the mesh (the sampled volume is within 1% of the
+// box on the grids the tests use; a larger shortfall is a blade through the domain boundary).
+constexpr double kMinBladeShare = 0.95;
 
 [[noreturn]] void BadOption(const std::string& name, const std::string& key, double value,
                             const std::string& expected) {
@@ -209,7 +212,15 @@ Rudder::Rudder(const Mesh& mesh, RudderOptions options) : options_(std::move(opt
     BladePosition pos{angle, cells.cells, cells.weights, {}, InducedMatrix(cells, sample, options_.waterline_image)};
     for (int c : pos.cells) pos.volumes.push_back(mesh.cell_volumes()[c]);
     CheckWalls(mesh, pos);
-    if (k == 0) blade_share_ = cells.volume / box.Volume();
+    const double share = cells.volume / box.Volume();
+    if (share < kMinBladeShare) {
+      throw ConfigError(fmt::format("{}.stock = {}: only {:.1f}% of the rudder blade {} at {:g} deg lies inside mesh "
+                                    "'{}': expected the whole blade inside the mesh (its force would act on the "
+                                    "part inside only)",
+                                    options_.name, Format(options_.stock), 100 * share, what, angle * 180 / kPi,
+                                    mesh.source()));
+    }
+    if (k == 0) blade_share_ = share;
     positions_.push_back(std::move(pos));
   }
   const BladePosition& amidships = positions_[static_cast<std::size_t>(n_side)];
