@@ -37,6 +37,9 @@ data::ConfigNode AppendageCaseText(const data::CampaignFile& f, const data::Appe
   root["propeller"]["rate"]["n"] = t.n;
   root["propeller"]["swirl"] = f.appendages->swirl;
   root["rudder"]["angle_deg"] = t.delta / kDeg;
+  const data::AppendageDesign& d = *f.appendages;
+  if (d.propeller_thickness > 0) root["propeller"]["thickness"] = d.propeller_thickness;
+  if (d.rudder_sample_distance > 0) root["rudder"]["sample_distance"] = d.rudder_sample_distance;
   return data::ConfigNode::LoadString(YAML::Dump(root), f.cfd.case_file.string() + " (with " + t.name + ")");
 }
 

@@ -76,6 +76,7 @@ class PropellerActuator final : public BodyActuator {
   std::vector<std::string> Finish() override;
 
   const PropellerState& last() const { return last_; }
+  const Propeller& propeller() const { return propeller_; }
   const PropellerRunOptions& options() const { return options_; }
 
  private:

@@ -23,6 +23,8 @@
 //       drift_deg: [-8, -4, 4, 8]       # rudder amidships
 //       circular: [{drift_deg: 0, r_prime: 0.3}]  # rudder amidships; rate_factor: 2 (default 1)
 //                                       # also sets the propeller rate of a circular run
+//       propeller_thickness: 0.1        # optional: the runs' propeller.thickness (of D)
+//       rudder_sample_distance: 0.5     # optional: the runs' rudder.sample_distance (chords)
 #pragma once
 
 #include <array>
@@ -75,6 +77,8 @@ struct AppendageDesign {
     double rate_factor = 1.0;  // of propeller_rate
   };
   std::vector<Circular> circular;
+  double propeller_thickness = 0;      // the case's propeller.thickness (of D); 0: the case loader's default
+  double rudder_sample_distance = 0;   // the case's rudder.sample_distance (chords); 0: the default
 };
 
 // One planned run: its name and the held motion, rudder and rate.

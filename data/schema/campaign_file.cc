@@ -82,7 +82,8 @@ std::vector<std::array<double, 3>> Circular(const ConfigNode& tests, bool rates)
 }
 
 AppendageDesign ReadAppendages(const ConfigNode& a, const std::filesystem::path& path) {
-  a.ExpectKeys({"ship", "propeller_rate", "swirl", "rate_factors", "rudder_deg", "drift_deg", "circular"});
+  a.ExpectKeys({"ship", "propeller_rate", "swirl", "rate_factors", "rudder_deg", "drift_deg", "circular",
+                "propeller_thickness", "rudder_sample_distance"});
   AppendageDesign d;
   d.ship_file = a.Get<std::string>("ship");
   if (d.ship_file.is_relative()) d.ship_file = path.parent_path() / d.ship_file;
@@ -95,6 +96,8 @@ AppendageDesign ReadAppendages(const ConfigNode& a, const std::filesystem::path&
   }
   d.drift_angles = Degrees(a, "drift_deg");
   for (const auto& [beta, r, rate] : Circular(a, true)) d.circular.push_back({beta, r, rate});
+  if (a.Has("propeller_thickness")) d.propeller_thickness = a.GetPositive("propeller_thickness");
+  if (a.Has("rudder_sample_distance")) d.rudder_sample_distance = a.GetPositive("rudder_sample_distance");
   return d;
 }
 

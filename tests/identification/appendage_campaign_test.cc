@@ -10,7 +10,10 @@
 #include <cmath>
 #include <fstream>
 
+#include "cfd/campaign/appendage_run.h"
 #include "cfd/campaign/cfd_campaign.h"
+#include "cfd/run/propeller_actuator.h"
+#include "cfd/run/rudder_actuator.h"
 #include "data/schema/appendage_runs.h"
 #include "data/schema/campaign_file.h"
 #include "data/schema/captive_io.h"
@@ -67,6 +70,36 @@ CampaignRunOptions Quiet(long stop_after = 0) {
   o.jobs = 1;
   o.stop_after_steps = stop_after;
   return o;
+}
+
+// The design's propeller_thickness and rudder_sample_distance reach each
+// run's body-force disk and blade; without them the case loader's defaults
+// (0.25 D, one chord).
+TEST_F(AppendageCampaign, DiskThicknessAndSampleDistanceReachTheRuns) {
+  data::CampaignFile f = Campaign("options");
+  const data::AppendageTest test = data::PlanAppendageTests(*f.appendages, f.speed, 1.0).front();
+  const auto options_of = [&](const data::CampaignFile& file) {
+    CaseOverrides overrides;  // the campaign gives each run its step and end
+    overrides.dt = 0.01;
+    overrides.end_time = 0.1;
+    overrides.output = tmp_->path() / "options_run";
+    const Case c = LoadAppendageCase(file, test, overrides);
+    double thickness = 0, sample = 0;
+    for (const auto& a : c.actuators) {
+      if (auto* p = dynamic_cast<const PropellerActuator*>(a.get())) thickness = p->propeller().disk().options().thickness;
+      if (auto* r = dynamic_cast<const RudderActuator*>(a.get())) sample = r->rudder().options().sample_distance;
+    }
+    return std::pair{thickness, sample};
+  };
+  const double D = 0.0294;  // data/ships/wigley.yaml propeller.D_p
+  const auto [t0, s0] = options_of(f);
+  EXPECT_NEAR(t0, 0.25 * D, 1e-12);
+  EXPECT_EQ(s0, 1.0);
+  f.appendages->propeller_thickness = 0.4;
+  f.appendages->rudder_sample_distance = 0.75;
+  const auto [t1, s1] = options_of(f);
+  EXPECT_NEAR(t1, 0.4 * D, 1e-12);
+  EXPECT_EQ(s1, 0.75);
 }
 
 TEST_F(AppendageCampaign, ResumesBitForBitMirrorsTheRudderAndPlacesItsForce) {

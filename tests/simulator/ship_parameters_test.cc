@@ -83,28 +83,45 @@ INSTANTIATE_TEST_SUITE_P(
         BadShip{"  Y_v: -0.315\n", "", "missing required key 'hull.Y_v'"},
         BadShip{"Lpp: 7.00 ", "Lpp: seven ", "key 'principal.Lpp' = 'seven': expected a number"}));
 
-// A hull for CFD only (the DTC: principal, geometry and the propeller of the
-// body-force disk): loads without hull and rudder sections, gives the CFD its
-// open-water table, and the MMG model refuses it by name.
+// A hull for CFD only (the DTC: principal, geometry, the propeller of the
+// body-force disk and an assumed rudder, no hull derivatives): loads, gives
+// the CFD its open-water table, and the MMG model refuses it by name until
+// derivatives come; without its rudder section the refusal names that too.
 TEST(ShipParametersTest, ACfdOnlyShipLoadsAndTheManeuveringModelRefusesIt) {
   const auto file = kelvin::testing::SourceDir() / "data/ships/dtc.yaml";
   const ShipParameters dtc = LoadShip(file);
   EXPECT_FALSE(dtc.has_hull);
-  EXPECT_FALSE(dtc.has_rudder);
-  EXPECT_FALSE(dtc.propeller.mmg);
+  EXPECT_TRUE(dtc.has_rudder);
+  EXPECT_TRUE(dtc.propeller.mmg);
   EXPECT_DOUBLE_EQ(*dtc.propeller.hub_ratio, 0.176);
   EXPECT_DOUBLE_EQ(*dtc.propeller.z_P, 0.1598);
   const OpenWaterCurve curve = CfdOpenWater(dtc, file.string());
   EXPECT_EQ(curve.J.size(), 21u);
   EXPECT_DOUBLE_EQ(curve.KT(0.6), 0.2250);  // a node of the tutorial's table
-  try {
-    RequireManeuveringModel(dtc, file.string());
-    FAIL() << "the MMG model accepted a ship without hull derivatives";
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("hull derivatives"));
-    EXPECT_THAT(e.what(), HasSubstr("a rudder section"));
-    EXPECT_THAT(e.what(), HasSubstr("dtc.yaml"));
-  }
+  auto expect_refusal = [](const ShipParameters& ship, const std::string& path, bool names_rudder) {
+    try {
+      RequireManeuveringModel(ship, path);
+      FAIL() << "the MMG model accepted a ship without hull derivatives";
+    } catch (const ConfigError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("hull derivatives"));
+      EXPECT_THAT(e.what(), HasSubstr(path));
+      EXPECT_EQ(std::string(e.what()).find("a rudder section") != std::string::npos, names_rudder) << e.what();
+    }
+  };
+  expect_refusal(dtc, file.string(), false);
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string t = text.str();
+  const std::size_t rudder = t.find("\nrudder:"), next = t.find("\nactuators:");
+  ASSERT_NE(rudder, std::string::npos);
+  ASSERT_NE(next, std::string::npos);
+  const ScopedTempDir dir;
+  const auto bare = dir / "dtc_without_rudder.yaml";
+  std::ofstream(bare) << t.substr(0, rudder) << t.substr(next);
+  const ShipParameters no_rudder = LoadShip(bare);
+  EXPECT_FALSE(no_rudder.has_rudder);
+  expect_refusal(no_rudder, bare.string(), true);
   EXPECT_NO_THROW(RequireManeuveringModel(testing::Kvlcc2(), "kvlcc2.yaml"));
 }
 

@@ -1,17 +1,20 @@
 #!/usr/bin/python3
-"""Benchmark: IMO maneuvers in free-running CFD, section `cfd_maneuvers` of BENCHMARKS.md.
+"""Benchmark: IMO maneuvers in free-running CFD, sections `cfd_maneuvers` (Wigley) and
+`cfd_maneuvers_dtc` of BENCHMARKS.md.
 
-Flies data/cases/free_running/wigley_turning.yaml (the body-force propeller
-and rudder of data/ships/wigley.yaml, steered by the simulator's controller)
-as 35 deg turning circles and 10/10 and 20/20 zig-zags to both sides, with
-the propeller's swirl on and off. Tabulates the metrics of each pair of
-sides (the hull is symmetric: without swirl they must agree) and the cost of
-each run (CPU seconds of `kelvin run`, from the child's resource usage)
-against `kelvin simulate` flying the same maneuvers with the ship file's
-MMG model.
+Flies a free-running case (by default data/cases/free_running/wigley_turning.yaml:
+the body-force propeller and rudder of data/ships/wigley.yaml, steered by the
+simulator's controller) as the given maneuvers (by default 35 deg turning
+circles and 10/10 and 20/20 zig-zags) to both sides, with the propeller's
+swirl on and off (or only one of them). Tabulates the metrics of each pair
+of sides (a symmetric hull without swirl must agree) and the cost of each run
+(CPU seconds of `kelvin run`, from the child's resource usage) against
+`kelvin simulate` flying the same maneuvers with the ship file's MMG model.
 
 Usage: tools/bench/cfd_maneuvers.py --kelvin build/ci/tools/kelvin [--jobs 2]
        [--work build/bench/cfd_maneuvers] [--write BENCHMARKS.md]
+   the DTC: ... --name cfd_maneuvers_dtc --case data/cases/free_running/dtc_turning.yaml
+       --maneuvers turning:35 zigzag:10/10 --swirl on
 """
 import argparse
 import os
@@ -21,13 +24,13 @@ import sys
 import time
 
 import h5py
+import yaml
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pimple_vs_openfoam import write_or_print  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 CASE = os.path.join(ROOT, "data/cases/free_running/wigley_turning.yaml")
-SHIP = os.path.join(ROOT, "data/ships/wigley.yaml")
 MANEUVERS = ["turning:35", "zigzag:10/10", "zigzag:20/20"]
 METRICS = {"turning": ["advance_over_L", "tactical_diameter_over_L", "steady_diameter_over_L", "steady_rate",
                        "time_to_90"],
@@ -38,19 +41,28 @@ def run_name(maneuver, side, swirl):
     return f"{maneuver.replace(':', '_').replace('/', '_')}_{side}_{'swirl' if swirl else 'noswirl'}"
 
 
-def case_text(maneuver, side, swirl):
+def case_motion(case):
+    """(ship file, approach speed) of a free-running case."""
+    with open(case) as f:
+        c = yaml.safe_load(f)
+    ship = os.path.normpath(os.path.join(os.path.dirname(case), c["motion"]["ship"]))
+    return ship, float(c["motion"]["initial"]["u"])
+
+
+def case_text(case, maneuver, side, swirl):
     """The case with absolute paths, the maneuver and the propeller's swirl."""
-    with open(CASE) as f:
+    with open(case) as f:
         text = f.read()
-    case_dir = os.path.dirname(CASE)
-    text = re.sub(r"poly_mesh: (\S+)}", lambda m: f"poly_mesh: {os.path.normpath(os.path.join(case_dir, m.group(1)))}}}",
-                  text)
-    text = text.replace("ship: ../../ships/wigley.yaml", f"ship: {SHIP}")
-    if 'kind: "turning:35:stbd"' not in text or "  thickness: 0.25\n" not in text:
-        sys.exit(f"{CASE}: no 'kind: \"turning:35:stbd\"' or propeller 'thickness: 0.25' to replace")
-    new = text.replace('kind: "turning:35:stbd"', f'kind: "{maneuver}:{side}"')
+    case_dir = os.path.dirname(case)
+    absolute = lambda m: f"{m.group(1)}{os.path.normpath(os.path.join(case_dir, m.group(2)))}"  # noqa: E731
+    text = re.sub(r"(poly_mesh: )([^\s}]+)", absolute, text)
+    text = re.sub(r"(\n  ship: )(\S+)", absolute, text)
+    kind = re.search(r'kind: "(turning|zigzag)[^"]*"', text)
+    if not kind or "\npropeller:\n" not in text:
+        sys.exit(f"{case}: expected a 'maneuver: {{kind: \"...\"}}' and a 'propeller:' block to edit")
+    new = text.replace(kind.group(0), f'kind: "{maneuver}:{side}"', 1)
     if not swirl:
-        new = new.replace("  thickness: 0.25\n", "  thickness: 0.25\n  swirl: false\n", 1)
+        new = new.replace("\npropeller:\n", "\npropeller:\n  swirl: false\n", 1)
     return new
 
 
@@ -94,66 +106,79 @@ def result(work, name):
     return metrics, t[-1], steps, cells
 
 
-def simulator_cpu(kelvin, work):
-    """CPU seconds of kelvin simulate flying all the maneuvers at 1 m/s (one process)."""
-    args = [kelvin, "simulate", SHIP, "--speed", "1.0", "-o", os.path.join(work, "simulate")]
-    for m in MANEUVERS:
+def simulator_cpu(kelvin, work, ship, speed, maneuvers, derivatives):
+    """CPU seconds of kelvin simulate flying all the maneuvers at the approach speed (one process)."""
+    args = [kelvin, "simulate", ship, "--speed", str(speed), "-o", os.path.join(work, "simulate")]
+    if derivatives:
+        args += ["--derivatives", derivatives]
+    for m in maneuvers:
         for side in ("stbd", "port"):
             args += ["-m", f"{m}:{side}"]
     t0 = os.times()
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
     t1 = os.times()
-    return (t1.children_user - t0.children_user) + (t1.children_system - t0.children_system), 2 * len(MANEUVERS)
+    return (t1.children_user - t0.children_user) + (t1.children_system - t0.children_system), 2 * len(maneuvers)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--kelvin", required=True, help="path to the kelvin program")
+    ap.add_argument("--case", default=CASE, help="free-running case (default the Wigley's)")
+    ap.add_argument("--name", default="cfd_maneuvers", help="section name (default cfd_maneuvers)")
+    ap.add_argument("--maneuvers", nargs="+", default=MANEUVERS, help="maneuvers without the side")
+    ap.add_argument("--swirl", choices=["both", "on", "off"], default="both", help="propeller swirl (default both)")
+    ap.add_argument("--derivatives", help="derivative set for the simulator's timing (a ship file without a hull)")
     ap.add_argument("--jobs", type=int, default=2, help="runs at a time (default 2)")
-    ap.add_argument("--work", default=os.path.join(ROOT, "build/bench/cfd_maneuvers"))
+    ap.add_argument("--work", help="work directory (default build/bench/<name>)")
     ap.add_argument("--write", help="replace the section in this file (e.g. BENCHMARKS.md)")
     args = ap.parse_args()
     if args.jobs < 1:
         sys.exit(f"--jobs {args.jobs}: expected at least 1")
-    runs = [(run_name(m, side, swirl), case_text(m, side, swirl))
-            for swirl in (False, True) for m in MANEUVERS for side in ("stbd", "port")]
+    for m in args.maneuvers:
+        if m.split(":")[0] not in METRICS or m.count(":") != 1:
+            sys.exit(f"--maneuvers {m}: expected turning:<deg> or zigzag:<deg>/<deg> (the side is added)")
+    case = os.path.abspath(args.case)
+    ship, speed = case_motion(case)
+    work = args.work or os.path.join(ROOT, "build/bench", args.name)
+    swirls = {"both": (False, True), "on": (True,), "off": (False,)}[args.swirl]
+    runs = [(run_name(m, side, swirl), case_text(case, m, side, swirl))
+            for swirl in swirls for m in args.maneuvers for side in ("stbd", "port")]
     start = time.time()
-    cpu = run_all(args.kelvin, args.work, runs, args.jobs)
-    sim_cpu, sim_runs = simulator_cpu(args.kelvin, args.work)
+    cpu = run_all(args.kelvin, work, runs, args.jobs)
+    sim_cpu, sim_runs = simulator_cpu(args.kelvin, work, ship, speed, args.maneuvers, args.derivatives)
+    rel = lambda p: os.path.relpath(p, ROOT)  # noqa: E731
 
-    out = ["## cfd_maneuvers: IMO maneuvers in free-running CFD (issue #21, acceptances 2 and 5)", "",
-           f"`tools/bench/cfd_maneuvers.py --jobs {args.jobs}`: `data/cases/free_running/wigley_turning.yaml` (the "
-           "1 m Wigley at 1 m/s on the quickstart's captive grid, the body-force propeller at n = 59.79 1/s and the "
-           "body-force rudder of `data/ships/wigley.yaml`, both assumed; dt 0.04 s), steered by the simulator's "
-           "maneuver controller. The disk and the blade are about 2 cells across: these runs measure the chain, "
-           f"its symmetry and its cost, not converged maneuvering. {len(runs)} runs, {args.jobs} at a time, "
-           f"{time.time() - start:.0f} s wall.", ""]
-    for swirl in (False, True):
+    out = [f"## {args.name}: IMO maneuvers in free-running CFD (issue #21, acceptances 2, 4 and 5)", "",
+           f"`tools/bench/cfd_maneuvers.py --jobs {args.jobs}` on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}: "
+           f"`{rel(case)}` (the body-force propeller and rudder of `{rel(ship)}`, approach at {speed:g} m/s), "
+           "steered by the simulator's maneuver controller. See the case file for the grid and what is assumed. "
+           f"{len(runs)} runs, {args.jobs} at a time, {time.time() - start:.0f} s wall.", ""]
+    for swirl in swirls:
         out += [f"### Propeller swirl {'on' if swirl else 'off'}", "",
                 "| maneuver | metric | starboard | port | port / starboard - 1 |", "| --- | --- | ---: | ---: | ---: |"]
-        for m in MANEUVERS:
-            s, _, _, _ = result(args.work, run_name(m, "stbd", swirl))
-            p, _, _, _ = result(args.work, run_name(m, "port", swirl))
+        for m in args.maneuvers:
+            s, _, _, _ = result(work, run_name(m, "stbd", swirl))
+            p, _, _, _ = result(work, run_name(m, "port", swirl))
             for k in METRICS[m.split(":")[0]]:
-                rel = p[k] / s[k] - 1 if s[k] != 0 else float("nan")
-                out.append(f"| {m} | {k} | {s[k]:.4f} | {p[k]:.4f} | {100 * rel:+.2f}% |")
+                rel_diff = p[k] / s[k] - 1 if s[k] != 0 else float("nan")
+                out.append(f"| {m} | {k} | {s[k]:.4f} | {p[k]:.4f} | {100 * rel_diff:+.2f}% |")
         out.append("")
     out += ["### Cost", "", "| run | cells | steps | simulated (s) | CPU (s) | CPU-h / Mcell / simulated s |",
             "| --- | ---: | ---: | ---: | ---: | ---: |"]
-    total = 0.0
+    total, cells = 0.0, 0
     for name, _ in runs:
-        _, t_end, steps, cells = result(args.work, name)
+        _, t_end, steps, cells = result(work, name)
         total += cpu[name]
         out.append(f"| {name} | {cells} | {steps} | {t_end:.2f} | {cpu[name]:.1f} | "
                    f"{cpu[name] / 3600 / (cells / 1e6) / t_end:.4f} |")
     per_sim = sim_cpu / sim_runs
-    out += ["", f"`kelvin simulate` (CVODE, the ship file's MMG model) flew the {sim_runs} maneuvers in {sim_cpu:.2f} "
+    out += ["", f"`kelvin simulate` (CVODE, MMG) flew the {sim_runs} maneuvers in {sim_cpu:.2f} "
             f"CPU s in one process, start-up included ({per_sim:.3f} s each); the {len(runs)} CFD runs took "
             f"{total:.0f} CPU s ({total / len(runs):.1f} s each): the CFD costs about {total / len(runs) / per_sim:.0f} "
-            "times the surrogate per maneuver on this 5k-cell grid, and the ratio grows with the cells. No published "
-            "CPU cost of a resolved-propeller free-running CFD maneuver was found in the search corpora, so none is "
-            "compared.", ""]
-    write_or_print(args.write, "cfd_maneuvers", "\n".join(out))
+            f"times the surrogate per maneuver on this {cells}-cell grid, and the ratio grows with the cells. No "
+            "published CPU cost of a resolved-propeller free-running CFD maneuver was found in the search corpora, so "
+            "none is compared.", ""]
+    write_or_print(args.write, args.name, "\n".join(out))
 
 
 if __name__ == "__main__":

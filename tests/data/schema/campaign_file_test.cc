@@ -59,6 +59,26 @@ TEST(CampaignFileTest, KcsCampaignPlansThePublishedPmmConditions) {
   EXPECT_TRUE(drift5);
 }
 
+// The appendage runs' propeller thickness and rudder sample distance go
+// into the design (cfd/campaign/appendage_run.cc writes them into each
+// run's case); absent, they are 0 (the case loader's defaults).
+TEST(CampaignFileTest, AppendageDiskAndSampleOptions) {
+  ScopedTempDir dir;
+  const auto path = dir / "c.yaml";
+  const char* head = "campaign: {name: a, ship: s.yaml, solver: cfd}\ncfd: {case: c.yaml}\n";
+  std::ofstream(path) << head
+                      << "tests: {static_drift_deg: [0], appendages: {ship: w.yaml, propeller_rate: 60, "
+                         "propeller_thickness: 0.1, rudder_sample_distance: 0.5}}\n";
+  const CampaignFile f = LoadCampaignFile(path);
+  ASSERT_TRUE(f.appendages.has_value());
+  EXPECT_EQ(f.appendages->propeller_thickness, 0.1);
+  EXPECT_EQ(f.appendages->rudder_sample_distance, 0.5);
+  std::ofstream(path) << head << "tests: {static_drift_deg: [0], appendages: {ship: w.yaml, propeller_rate: 60}}\n";
+  const CampaignFile g = LoadCampaignFile(path);
+  EXPECT_EQ(g.appendages->propeller_thickness, 0.0);
+  EXPECT_EQ(g.appendages->rudder_sample_distance, 0.0);
+}
+
 struct BadCampaign {
   const char* text;
   const char* message;
@@ -110,7 +130,10 @@ INSTANTIATE_TEST_SUITE_P(
                     "key 'tests.appendages.propeller_rate' = '-60'"},
         BadCampaign{"campaign: {name: a, ship: s.yaml, solver: cfd}\ncfd: {case: c.yaml}\ntests: {static_drift_deg: "
                     "[0], appendages: {ship: w.yaml, propeller_rate: 60, rudder: [10]}}\n",
-                    "unknown key 'tests.appendages.rudder'"}));
+                    "unknown key 'tests.appendages.rudder'"},
+        BadCampaign{"campaign: {name: a, ship: s.yaml, solver: cfd}\ncfd: {case: c.yaml}\ntests: {static_drift_deg: "
+                    "[0], appendages: {ship: w.yaml, propeller_rate: 60, rudder_sample_distance: 0}}\n",
+                    "key 'tests.appendages.rudder_sample_distance' = '0'"}));
 
 }  // namespace
 }  // namespace kelvin::data
