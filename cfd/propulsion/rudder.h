@@ -107,6 +107,13 @@ struct RudderState {
 class Rudder {
  public:
   using BodyVelocity = std::function<Vector3(int cell)>;
+  // The angle of attack up to which the body-force blade's normal force is
+  // validated: within 1% of the lift curve in a uniform stream on two grids
+  // (5 and 10 cells across the chord). Beyond it the blade's own blockage
+  // outgrows the linearized induced velocity removed from the sample: -3.0%
+  // at 25 deg and -7.2% at 30 deg with 10 cells across, -2.3% at 30 deg with
+  // 5 (BENCHMARKS.md rudder_stream); runs that go beyond it are told so.
+  static constexpr double kValidatedAngle = 20.0 * 3.14159265358979323846 / 180.0;  // rad
   // `mesh` must hold its body-fixed geometry. Throws ConfigError when the
   // blade or the sample box holds no cell (outside the mesh), when a blade
   // cell owns a wall face (the blade inside or against the hull), or for a

@@ -73,6 +73,7 @@ void RudderActuator::SetOrder(double order) { order_ = std::clamp(order, -gear_.
 
 void RudderActuator::BeforeStep(double t_new, double dt) {
   t_ = t_new;
+  dt_ = dt;
   const double step = gear_.rate * dt;
   delta_ += std::clamp(order_ - delta_, -step, step);
 }
@@ -106,6 +107,9 @@ void RudderActuator::AfterStep(const FreeBody& /*body*/, History& h) {
   h.Set(state_col_, Vector3(last_.delta, order_, last_.F_N));
   const std::vector<double> inflow = {last_.u_R, last_.v_R, last_.alpha_R, last_.u_sample, last_.v_sample};
   h.Set(inflow_col_, std::span<const double>(inflow));
+  const double alpha = std::abs(last_.alpha_R);
+  max_alpha_ = std::max(max_alpha_, alpha);
+  if (alpha > Rudder::kValidatedAngle) time_beyond_ += dt_;
 }
 
 void RudderActuator::AddCheckpointScalars(CheckpointScalars& s) const {
@@ -115,6 +119,8 @@ void RudderActuator::AddCheckpointScalars(CheckpointScalars& s) const {
   s["rudder_started"] = r.started ? 1.0 : 0.0;
   s["rudder_delta"] = delta_;
   s["rudder_order"] = order_;
+  s["rudder_max_alpha"] = max_alpha_;
+  s["rudder_time_beyond"] = time_beyond_;
 }
 
 void RudderActuator::RestoreScalars(const CheckpointScalars& s) {
@@ -126,13 +132,29 @@ void RudderActuator::RestoreScalars(const CheckpointScalars& s) {
   rudder_.SetState({get("rudder_F_N"), get("rudder_applied_delta"), get("rudder_started") != 0.0});
   delta_ = get("rudder_delta");
   order_ = get("rudder_order");
+  // Diagnostics only: checkpoints written before they existed restart with 0.
+  const auto diagnostic = [&](const char* name) {
+    const auto it = s.find(name);
+    return it == s.end() ? 0.0 : it->second;
+  };
+  max_alpha_ = diagnostic("rudder_max_alpha");
+  time_beyond_ = diagnostic("rudder_time_beyond");
 }
 
 std::vector<std::string> RudderActuator::Finish() {
-  return {fmt::format("rudder at the last step: delta {:.3g} deg, F_N {:.4g} N, inflow u_R {:.4g} m/s, v_R {:.4g} m/s, "
+  std::vector<std::string> lines = {fmt::format("rudder at the last step: delta {:.3g} deg, F_N {:.4g} N, inflow u_R {:.4g} m/s, v_R {:.4g} m/s, "
                       "alpha_R {:.3g} deg ({:.1f} cells across the chord)",
                       last_.delta / kDeg, last_.F_N, last_.u_R, last_.v_R, last_.alpha_R / kDeg,
                       rudder_.cells_across_chord())};
+  if (max_alpha_ > Rudder::kValidatedAngle) {
+    lines.push_back(fmt::format(
+        "WARNING: the rudder's angle of attack reached {:.1f} deg and stayed beyond {:.0f} deg for {:.3g} s: there "
+        "the body-force blade's normal force falls below its lift curve (in a uniform stream -3% at 25 deg and -7% at "
+        "30 deg with 10 cells across the chord, BENCHMARKS.md rudder_stream), so the rudder force of those steps is "
+        "low",
+        max_alpha_ / kDeg, Rudder::kValidatedAngle / kDeg, time_beyond_));
+  }
+  return lines;
 }
 
 }  // namespace kelvin::cfd

@@ -19,7 +19,8 @@
 // delta, Y = -F_N cos delta and their moment about the reference point;
 // history columns rudder/state (delta, order, F_N) and rudder/inflow (u_R,
 // v_R, alpha_R, and the sampled u, v before the induced part is removed)
-// every step.
+// every step. The run's end reports a WARNING when |alpha_R| went beyond
+// the range where the blade's force is validated (Rudder::kValidatedAngle).
 #pragma once
 
 #include <memory>
@@ -71,6 +72,9 @@ class RudderActuator final : public BodyActuator {
   double delta_ = 0.0;  // the blade angle of the step in progress
   double t_ = 0.0;
   RudderState last_;
+  double dt_ = 0.0;           // the step in progress (s)
+  double max_alpha_ = 0.0;    // largest |alpha_R| of the run (rad)
+  double time_beyond_ = 0.0;  // time with |alpha_R| beyond Rudder::kValidatedAngle (s)
   History::Column state_col_ = -1, inflow_col_ = -1;
 };
 

@@ -8,13 +8,16 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
 
 #include "cfd/campaign/maneuver_campaign.h"
+#include "cfd/propulsion/rudder.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "tests/cfd/run/wigley_free_running_fixture.h"
@@ -61,6 +64,14 @@ TEST_F(FreeRunning, TurningIsFlownByTheSimulatorsControllerAndWrittenInItsSchema
   EXPECT_GT(rudder[3 * last + 2], 0.0);
   EXPECT_GT(traj[3 * last + 2], 5 * kDeg);
   EXPECT_GT(inflow[5 * last], 0.5);
+  // The blade went beyond the angle of attack where its force is validated,
+  // and the run's report says so with the history's largest |alpha_R|.
+  double max_alpha = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i) max_alpha = std::max(max_alpha, std::abs(inflow[5 * i + 2]));
+  ASSERT_GT(max_alpha, Rudder::kValidatedAngle);
+  char reached[64];
+  std::snprintf(reached, sizeof reached, "angle of attack reached %.1f deg", max_alpha / kDeg);
+  EXPECT_THAT(s.message, HasSubstr(std::string("WARNING: the rudder's ") + reached)) << s.message;
   // The result in the simulator's schema: its trajectory is the body's.
   const data::H5Reader m(tmp_->path() / "turn/out/maneuver.h5");
   const auto mt = m.Read("trajectory/time").values, mpsi = m.Read("trajectory/psi").values;
