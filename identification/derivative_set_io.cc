@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "data/schema/atomic_file.h"
 #include "data/schema/h5_file.h"
@@ -17,6 +19,21 @@ constexpr const auto& kNames = sim::HullCoefficients<double>::kNames;
 std::string Number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "null"; }
 
 }  // namespace
+
+sim::IdentifiedRange CampaignRange(const data::CaptiveCampaign& campaign) {
+  sim::IdentifiedRange range;
+  for (const data::CaptiveRun& run : campaign.runs) {
+    for (double t : run.time) {
+      if (t < run.motion.t_ramp) continue;
+      const data::BodyKinematics k = data::KinematicsAt(run.motion, campaign.ship.Lpp, t);
+      const double U = std::hypot(k.u, k.v);
+      if (!(U > 0.0)) continue;
+      range.drift = std::max(range.drift, std::atan2(std::abs(k.v), k.u));
+      range.r_prime = std::max(range.r_prime, std::abs(k.r) * campaign.ship.Lpp / U);
+    }
+  }
+  return range;
+}
 
 bool ClassicalCounterpart(const std::string& name, const sim::HullCoefficients<double>& c,
                           double* value) {
@@ -128,6 +145,13 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
   y << YAML::Key << "residuals" << YAML::Value << fit.residuals;
   y << YAML::Key << "converged" << YAML::Value << fit.converged;
   y << YAML::Key << "solver" << YAML::Value << fit.solver_report;
+  const sim::IdentifiedRange range = CampaignRange(*rep.campaign);
+  y << YAML::Key << "range" << YAML::Value
+    << YAML::Comment("the largest |drift| and |r'| of the runs after their ramps: beyond them the derivatives are "
+                     "extrapolated")
+    << YAML::Flow << YAML::BeginMap << YAML::Key << "drift_deg" << YAML::Value
+    << Number(range.drift * 180.0 / std::numbers::pi) << YAML::Key << "r_prime" << YAML::Value
+    << Number(range.r_prime) << YAML::EndMap;
   y << YAML::Key << "status" << YAML::Value << YAML::BeginMap;
   for (int i = 0; i < kCoefficientCount; ++i) {
     std::string s(CoefficientStatusName(fit.status[i]));

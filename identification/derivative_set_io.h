@@ -11,6 +11,7 @@
 #include <string>
 
 #include "data/schema/captive_run.h"
+#include "simulator/mmg/derivative_set.h"
 #include "identification/interaction_fit.h"
 #include "identification/joint_fit.h"
 #include "identification/pmm_analysis.h"
@@ -24,6 +25,11 @@ struct IdentificationReport {
   const PmmAnalysis* pmm = nullptr;  // optional cross-check
   const InteractionFitResult* interaction = nullptr;  // optional: the campaign's runs with propeller and rudder
 };
+
+// The motions the campaign's runs reached after their ramps: the largest
+// |drift angle| and |r'| (written as fit.range, read by the surrogate's
+// extrapolation warnings, simulator/maneuvers/identified_range.h).
+sim::IdentifiedRange CampaignRange(const data::CaptiveCampaign& campaign);
 
 std::string FormatDerivativeYaml(const IdentificationReport& report);
 void WriteDerivativeYaml(const IdentificationReport& report, const std::filesystem::path& path);

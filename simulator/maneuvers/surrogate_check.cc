@@ -16,6 +16,7 @@
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
+#include "simulator/maneuvers/identified_range.h"
 #include "simulator/mmg/surrogate.h"
 
 namespace kelvin::sim {
@@ -399,6 +400,13 @@ SurrogateCheck RunSurrogateCheck(const SurrogateCheckOptions& o) {
           order.empty() ? "<metric>" : order.front()));
     }
     mc.track = CompareTracks(mc.reference.result, mc.surrogate);
+    const std::string name = mc.surrogate.spec.ToString();
+    for (const auto& [what, trajectory] :
+         {std::pair{fmt::format("the {} reference of {}", mc.reference.source, name), &mc.reference.result.trajectory},
+          std::pair{fmt::format("the surrogate's {}", name), &mc.surrogate.trajectory}}) {
+      std::string w = ExtrapolationWarning(set, *trajectory, ship.principal.Lpp, what);
+      if (!w.empty()) mc.warnings.push_back(std::move(w));
+    }
     mc.passed = std::none_of(mc.metrics.begin(), mc.metrics.end(),
                              [](const MetricComparison& c) { return c.verdict == MetricComparison::Verdict::kFail; });
     mc.summary = SummaryLine(mc);
@@ -439,6 +447,7 @@ std::string FormatCheckTable(const SurrogateCheck& check) {
         "m ({:.4g} L); heading error max {:.4g} deg, RMS {:.4g} deg\n",
         t.time.size(), t.time.empty() ? 0.0 : t.time.back(), t.max_position, t.max_position / L, t.rms_position,
         t.rms_position / L, t.max_heading / kDeg, t.rms_heading / kDeg);
+    for (const std::string& w : m.warnings) s += fmt::format("  {}\n", w);
     s += fmt::format("  => {}\n", m.passed ? "PASS" : "FAIL");
   }
   s += fmt::format(

@@ -91,6 +91,9 @@ struct ManeuverCheck {
   TrackErrors track;
   bool passed = false;
   std::string summary;  // one line: the maneuver, its worst metric, the track error
+  // Where the reference or the surrogate went beyond the set's identified
+  // range (identified_range.h): one WARNING line each, none when within.
+  std::vector<std::string> warnings;
 };
 
 struct SurrogateCheckOptions {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "data/schema/config.h"
@@ -43,6 +44,17 @@ DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesys
     for (const std::string& k : inter->Keys()) {
       set.interaction[k] = inter->Get<double>(k);
       if (!std::isfinite(set.interaction[k])) (*inter)[k].Fail("a finite number");
+    }
+  }
+  if (const auto fit = root.Find("fit")) {
+    if (const auto range = fit->Find("range")) {
+      range->ExpectKeys({"drift_deg", "r_prime"});
+      IdentifiedRange r;
+      r.drift = range->Get<double>("drift_deg") * std::numbers::pi / 180.0;
+      r.r_prime = range->Get<double>("r_prime");
+      if (!(r.drift >= 0 && r.drift <= std::numbers::pi)) (*range)["drift_deg"].Fail("an angle in [0, 180] deg");
+      if (!(r.r_prime >= 0) || !std::isfinite(r.r_prime)) (*range)["r_prime"].Fail("a non-negative r'");
+      set.range = r;
     }
   }
   if (const auto check = root.Find("check")) {

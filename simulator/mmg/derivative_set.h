@@ -38,6 +38,14 @@ struct DerivativeCheck {
   std::string summary;
 };
 
+// The motions a set was identified over (fit.range, written by kelvin
+// identify): the largest |drift angle| and |r'| its captive runs reached. A
+// maneuver beyond them flies the derivatives extrapolated.
+struct IdentifiedRange {
+  double drift = 0.0;    // rad
+  double r_prime = 0.0;  // r Lpp / U
+};
+
 struct DerivativeSet {
   std::string file;
   std::string name;
@@ -46,6 +54,7 @@ struct DerivativeSet {
   HullCoefficients<double> hull;
   std::map<std::string, double> interaction;  // the keys above
   std::optional<DerivativeCheck> check;
+  std::optional<IdentifiedRange> range;  // fit.range; sets written before it existed have none
 };
 
 // The interaction keys a set may carry, in ship-file order.

@@ -11,6 +11,7 @@
 
 #include "data/schema/captive_io.h"
 #include "data/schema/h5_file.h"
+#include "identification/derivative_set_io.h"
 #include "identification/virtual_captive.h"
 #include "simulator/mmg/derivative_set.h"
 #include "tests/test_utilities/test_utilities.h"
@@ -56,6 +57,11 @@ TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
     EXPECT_EQ(set.hull[i], identified.hull[i]) << sim::HullCoefficients<double>::kNames[i];
   }
   EXPECT_FALSE(set.check.has_value());
+  // Its range: what the campaign's runs reached, to the 6 digits written.
+  ASSERT_TRUE(set.range.has_value());
+  const sim::IdentifiedRange range = CampaignRange(Campaign());
+  EXPECT_NEAR(set.range->drift, range.drift, 1e-5 * range.drift);
+  EXPECT_NEAR(set.range->r_prime, range.r_prime, 1e-5 * range.r_prime);
   // HDF5 beside it: the full covariance and per-run measured/fitted forces.
   const data::H5Reader h5(dir / "kvlcc2_derivatives.h5");
   const data::Series cov = h5.Read("/covariance");
@@ -73,6 +79,30 @@ TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
     EXPECT_GT(std::filesystem::file_size(dir / "plots" / (std::string(run) + ".png")), 10000u)
         << run;
   }
+}
+
+// The range a campaign spans: a static drift at 12 deg and a circular run at
+// r' 0.6 with 4 deg drift give drift 12 deg and r' 0.6; the speed ramp of
+// the drift run (before t_ramp) does not count.
+TEST(IdentifyCliTest, CampaignRangeIsTheLargestDriftAndYawRate) {
+  data::CaptiveCampaign c;
+  c.ship.Lpp = 7.0;
+  data::CaptiveRun drift;
+  drift.motion.kind = data::MotionKind::kStaticDrift;
+  drift.motion.U = 1.2;
+  drift.motion.beta = 12.0 * M_PI / 180.0;
+  drift.motion.t_ramp = 2.0;
+  drift.time = {0.5, 1.0, 2.0, 3.0};
+  data::CaptiveRun circle;
+  circle.motion.kind = data::MotionKind::kCircularMotion;
+  circle.motion.U = 1.2;
+  circle.motion.beta = -4.0 * M_PI / 180.0;
+  circle.motion.r_prime = -0.6;
+  circle.time = {0.0, 1.0};
+  c.runs = {drift, circle};
+  const sim::IdentifiedRange r = CampaignRange(c);
+  EXPECT_NEAR(r.drift, 12.0 * M_PI / 180.0, 1e-12);
+  EXPECT_NEAR(r.r_prime, 0.6, 1e-12);
 }
 
 TEST(IdentifyCliTest, CsvRunsWithShipFile) {

@@ -9,9 +9,13 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <numbers>
+
+#include <fmt/format.h>
 
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
+#include "simulator/maneuvers/identified_range.h"
 #include "simulator/mmg/derivative_check_io.h"
 #include "tests/simulator/surrogate_check_fixtures.h"
 
@@ -91,6 +95,34 @@ TEST(SurrogateCheck, SameDerivativesGiveZeroDifferencesAndPass) {
   EXPECT_TRUE(back.check->passed);
   EXPECT_EQ(back.check->reference, check.section.reference);
   EXPECT_EQ(back.check->summary, check.section.summary);
+}
+
+// A set identified over a narrower range than the maneuvers fly: the check
+// names the reference and the surrogate that went beyond it, with how far
+// (kelvin check prints the lines); a set whose range spans them, or that
+// has none, gives no warning.
+TEST(SurrogateCheck, ManeuversBeyondTheIdentifiedRangeAreNamed) {
+  const ScopedTempDir dir;
+  const auto narrow = WriteSetFromShip(dir / "narrow.yaml", "wigley", 1.0, "",
+                                       "  range: {drift_deg: 2, r_prime: 0.1}\n");
+  const auto wide = WriteSetFromShip(dir / "wide.yaml", "wigley", 1.0, "",
+                                     "  range: {drift_deg: 60, r_prime: 3}\n");
+  const auto bare = WriteSetFromShip(dir / "bare.yaml", "wigley");
+  const auto turning = WriteReference(dir.path(), "wigley", bare, "turning:35:stbd");
+  const SurrogateCheck n = RunSurrogateCheck(Options(narrow, "wigley", {turning}));
+  ASSERT_EQ(n.maneuvers.size(), 1u);
+  const ManeuverCheck& m = n.maneuvers[0];
+  const MotionExtent e = TrajectoryExtent(m.reference.result.trajectory, m.reference.result.Lpp);
+  EXPECT_GT(e.drift, 2.0 * std::numbers::pi / 180.0);
+  EXPECT_GT(e.r_prime, 0.1);
+  ASSERT_EQ(m.warnings.size(), 2u);
+  EXPECT_THAT(m.warnings[0], HasSubstr("WARNING: the simulator reference of turning:35:stbd reached drift"));
+  EXPECT_THAT(m.warnings[0], HasSubstr(fmt::format("r' {:.2f}", e.r_prime)));
+  EXPECT_THAT(m.warnings[0], HasSubstr("identified up to drift 2.0 deg and r' 0.10"));
+  EXPECT_THAT(m.warnings[1], HasSubstr("WARNING: the surrogate's turning:35:stbd reached"));
+  EXPECT_THAT(FormatCheckTable(n), HasSubstr(m.warnings[1]));
+  EXPECT_TRUE(RunSurrogateCheck(Options(wide, "wigley", {turning})).maneuvers[0].warnings.empty());
+  EXPECT_TRUE(RunSurrogateCheck(Options(bare, "wigley", {turning})).maneuvers[0].warnings.empty());
 }
 
 // References from a hull whose yaw damping N_r is 1.2 times the set's: the

@@ -98,6 +98,15 @@ def metric_table(tables):
     return "\n".join(rows)
 
 
+def range_warnings(check_log):
+    """kelvin check's WARNING lines: maneuvers beyond the motions the set was identified over."""
+    with open(check_log) as f:
+        lines = [line.strip() for line in f if line.strip().startswith("WARNING:")]
+    if not lines:
+        return "Every maneuver stayed within the drift and r' the captive runs span."
+    return "Beyond the identified range (kelvin check's warnings):\n\n" + "\n".join(f"- {line}" for line in lines)
+
+
 def interaction_table(derivatives, ship):
     with open(derivatives) as f:
         found = yaml.safe_load(f).get("interaction") or {}
@@ -138,6 +147,8 @@ def main():
         f"state. Result: **{'PASSED' if passed else 'FAILED'}**.",
         "",
         metric_table(tables),
+        "",
+        range_warnings(os.path.join(work, "check.log")),
         "",
         "Interaction coefficients identified from the campaign's runs with propeller and rudder:",
         "",

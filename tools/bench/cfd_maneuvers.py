@@ -77,9 +77,22 @@ def launch(kelvin, work, name, text):
                             env=env, stdout=log, stderr=subprocess.STDOUT)
 
 
-def run_all(kelvin, work, runs, jobs):
-    """Runs the cases `jobs` at a time; returns CPU seconds per run (children's rusage)."""
-    pending, running, cpu = list(runs), {}, {}
+def cpu_file(work, name):
+    return os.path.join(work, name, "cpu_seconds")
+
+
+def run_all(kelvin, work, runs, jobs, reuse):
+    """Runs the cases `jobs` at a time; returns CPU seconds per run (children's rusage, kept in
+    <run>/cpu_seconds). With `reuse`, a run with its maneuver.h5 and cpu_seconds is not run again."""
+    pending, running, cpu = [], {}, {}
+    for name, text in runs:
+        done = os.path.exists(os.path.join(work, name, "out", "maneuver.h5")) and os.path.exists(cpu_file(work, name))
+        if reuse and done:
+            with open(cpu_file(work, name)) as f:
+                cpu[name] = float(f.read())
+            print(f"{name}: reused ({cpu[name]:.1f} CPU s when it ran)", file=sys.stderr)
+        else:
+            pending.append((name, text))
     while pending or running:
         while pending and len(running) < jobs:
             name, text = pending.pop(0)
@@ -91,6 +104,8 @@ def run_all(kelvin, work, runs, jobs):
         if os.waitstatus_to_exitcode(status) != 0:
             sys.exit(f"{name}: kelvin run failed; see {os.path.join(work, name, 'kelvin_run.log')}")
         cpu[name] = usage.ru_utime + usage.ru_stime
+        with open(cpu_file(work, name), "w") as f:
+            f.write(f"{cpu[name]:.3f}\n")
         print(f"{name}: {cpu[name]:.1f} CPU s", file=sys.stderr)
     return cpu
 
@@ -131,6 +146,7 @@ def main():
     ap.add_argument("--jobs", type=int, default=2, help="runs at a time (default 2)")
     ap.add_argument("--work", help="work directory (default build/bench/<name>)")
     ap.add_argument("--write", help="replace the section in this file (e.g. BENCHMARKS.md)")
+    ap.add_argument("--reuse", action="store_true", help="keep runs that finished in an earlier call (their CPU time too)")
     args = ap.parse_args()
     if args.jobs < 1:
         sys.exit(f"--jobs {args.jobs}: expected at least 1")
@@ -144,7 +160,7 @@ def main():
     runs = [(run_name(m, side, swirl), case_text(case, m, side, swirl))
             for swirl in swirls for m in args.maneuvers for side in ("stbd", "port")]
     start = time.time()
-    cpu = run_all(args.kelvin, work, runs, args.jobs)
+    cpu = run_all(args.kelvin, work, runs, args.jobs, args.reuse)
     sim_cpu, sim_runs = simulator_cpu(args.kelvin, work, ship, speed, args.maneuvers, args.derivatives)
     rel = lambda p: os.path.relpath(p, ROOT)  # noqa: E731
 
@@ -152,7 +168,11 @@ def main():
            f"`tools/bench/cfd_maneuvers.py --jobs {args.jobs}` on {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}: "
            f"`{rel(case)}` (the body-force propeller and rudder of `{rel(ship)}`, approach at {speed:g} m/s), "
            "steered by the simulator's maneuver controller. See the case file for the grid and what is assumed. "
-           f"{len(runs)} runs, {args.jobs} at a time, {time.time() - start:.0f} s wall.", ""]
+           f"{len(runs)} runs, {args.jobs} at a time"
+           + (f", {time.time() - start:.0f} s wall." if len(cpu) == 0 or not args.reuse else
+              " (finished runs of an earlier call reused with the CPU time they took).")
+           + (f" The simulator's timing flies the derivative set `{rel(args.derivatives)}`." if args.derivatives else ""),
+           ""]
     for swirl in swirls:
         out += [f"### Propeller swirl {'on' if swirl else 'off'}", "",
                 "| maneuver | metric | starboard | port | port / starboard - 1 |", "| --- | --- | ---: | ---: | ---: |"]
