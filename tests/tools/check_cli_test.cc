@@ -42,6 +42,29 @@ std::string Check(const fs::path& set, const std::string& ship, const std::strin
   return Kelvin() + " check " + set.string() + " --ship " + ShipFile(ship).string() + " " + args;
 }
 
+// A set identified over less than a maneuver flies: kelvin simulate and
+// kelvin check both say the maneuver went beyond its range; within it,
+// neither does.
+TEST(KelvinCheckTest, ManeuversBeyondTheIdentifiedRangeAreNamed) {
+  const ScopedTempDir dir;
+  const auto narrow = WriteSetFromShip(dir / "narrow.yaml", "wigley", 1.0, "", "  range: {drift_deg: 1, r_prime: 0.05}\n");
+  const auto wide = WriteSetFromShip(dir / "wide.yaml", "wigley", 1.0, "", "  range: {drift_deg: 60, r_prime: 3}\n");
+  const auto sim = RunCommand(Kelvin() + " simulate " + ShipFile("wigley").string() + " --derivatives " +
+                              narrow.string() + " -m turning:35:stbd -o " + (dir / "narrow").string());
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  EXPECT_THAT(sim.output, HasSubstr("WARNING: turning:35:stbd reached drift"));
+  EXPECT_THAT(sim.output, HasSubstr("identified up to drift 1.0 deg and r' 0.05"));
+  const fs::path turning = dir / "narrow/Wigley_turning_35_stbd.h5";
+  const auto check = RunCommand(Check(narrow, "wigley", "--against " + turning.string()));
+  ASSERT_EQ(check.exit_code, 0) << check.output;
+  EXPECT_THAT(check.output, HasSubstr("WARNING: the simulator reference of turning:35:stbd reached drift"));
+  EXPECT_THAT(check.output, HasSubstr("WARNING: the surrogate's turning:35:stbd reached drift"));
+  const auto within = RunCommand(Kelvin() + " simulate " + ShipFile("wigley").string() + " --derivatives " +
+                                 wide.string() + " -m turning:35:stbd -o " + (dir / "wide").string());
+  ASSERT_EQ(within.exit_code, 0) << within.output;
+  EXPECT_THAT(within.output, Not(HasSubstr("WARNING")));
+}
+
 TEST(KelvinCheckTest, SameDerivativesPassAndAreRecorded) {
   const ScopedTempDir dir;
   const auto set = WriteSetFromShip(dir / "wigley_set.yaml", "wigley");

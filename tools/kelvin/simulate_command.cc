@@ -10,6 +10,7 @@
 
 #include "simulator/mmg/derivative_set.h"
 #include "data/schema/errors.h"
+#include "simulator/maneuvers/identified_range.h"
 #include "simulator/maneuvers/runner.h"
 #include "simulator/mmg/surrogate.h"
 #include "tools/kelvin/commands.h"
@@ -75,6 +76,10 @@ void RunSimulate(const SimulateArgs& a) {
         std::filesystem::path(a.output_dir) / (FileStem(ship.name, spec.ToString()) + ".h5");
     sim::WriteManeuverResult(res, out, a.integrator);
     fmt::print("{}", sim::FormatManeuverReport(res));
+    if (set) {
+      const std::string w = sim::ExtrapolationWarning(*set, res.trajectory, res.Lpp, spec.ToString());
+      if (!w.empty()) fmt::print("  {}\n", w);
+    }
     fmt::print("  written: {}\n", out.string());
   }
 }
