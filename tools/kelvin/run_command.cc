@@ -42,8 +42,6 @@ class StopSignals {
   struct sigaction old_int_ {}, old_term_ {};
 };
 
-}  // namespace
-
 // The maneuvers of -m as a resumable campaign; exits 3 if a run failed and
 // 128 + the signal if a stop was requested.
 void RunManeuvers(const std::string& case_file, const std::vector<std::string>& maneuvers, int jobs,
@@ -66,6 +64,8 @@ void RunManeuvers(const std::string& case_file, const std::vector<std::string>& 
     std::exit(3);
   }
 }
+
+}  // namespace
 
 Command AddRunCommand(CLI::App& app) {
   struct Args {
