@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -20,16 +19,13 @@ std::string Number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v
 
 }  // namespace
 
-sim::IdentifiedRange CampaignRange(const data::CaptiveCampaign& campaign) {
-  sim::IdentifiedRange range;
+sim::MotionRange CampaignRange(const data::CaptiveCampaign& campaign) {
+  sim::MotionRange range;
   for (const data::CaptiveRun& run : campaign.runs) {
     for (double t : run.time) {
       if (t < run.motion.t_ramp) continue;
       const data::BodyKinematics k = data::KinematicsAt(run.motion, campaign.ship.Lpp, t);
-      const double U = std::hypot(k.u, k.v);
-      if (!(U > 0.0)) continue;
-      range.drift = std::max(range.drift, std::atan2(std::abs(k.v), k.u));
-      range.r_prime = std::max(range.r_prime, std::abs(k.r) * campaign.ship.Lpp / U);
+      range.Include(k.u, k.v, k.r, campaign.ship.Lpp);
     }
   }
   return range;
@@ -145,7 +141,7 @@ std::string FormatDerivativeYaml(const IdentificationReport& rep) {
   y << YAML::Key << "residuals" << YAML::Value << fit.residuals;
   y << YAML::Key << "converged" << YAML::Value << fit.converged;
   y << YAML::Key << "solver" << YAML::Value << fit.solver_report;
-  const sim::IdentifiedRange range = CampaignRange(*rep.campaign);
+  const sim::MotionRange range = CampaignRange(*rep.campaign);
   y << YAML::Key << "range" << YAML::Value
     << YAML::Comment("the largest |drift| and |r'| of the runs after their ramps: beyond them the derivatives are "
                      "extrapolated")

@@ -29,7 +29,7 @@ struct IdentificationReport {
 // The motions the campaign's runs reached after their ramps: the largest
 // |drift angle| and |r'| (written as fit.range, read by the surrogate's
 // extrapolation warnings, simulator/maneuvers/identified_range.h).
-sim::IdentifiedRange CampaignRange(const data::CaptiveCampaign& campaign);
+sim::MotionRange CampaignRange(const data::CaptiveCampaign& campaign);
 
 std::string FormatDerivativeYaml(const IdentificationReport& report);
 void WriteDerivativeYaml(const IdentificationReport& report, const std::filesystem::path& path);

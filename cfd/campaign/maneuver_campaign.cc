@@ -10,6 +10,7 @@
 
 #include "cfd/campaign/worker_process.h"
 #include "cfd/run/case_loader.h"
+#include "cfd/run/maneuver_pilot.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 #include "simulator/maneuvers/maneuver.h"
@@ -172,10 +173,10 @@ void RunWorkers(const fs::path& case_file, const ManeuverCampaignOptions& option
   }
 }
 
-// The campaign's output directory: the option, else the case's.
-fs::path OutputDirectory(const fs::path& case_file, const ManeuverCampaignOptions& options) {
+// The campaign's output directory: the option, else the case's (`root`).
+fs::path OutputDirectory(const data::ConfigNode& root, const fs::path& case_file,
+                         const ManeuverCampaignOptions& options) {
   if (!options.output.empty()) return options.output;
-  const data::ConfigNode root = data::ConfigNode::LoadFile(case_file);
   return ReadCaseSettings(root, case_file.parent_path()).output.directory;
 }
 
@@ -184,12 +185,9 @@ fs::path OutputDirectory(const fs::path& case_file, const ManeuverCampaignOption
 ManeuverCampaignSummary RunManeuverCampaign(const fs::path& case_file, const ManeuverCampaignOptions& options) {
   if (options.maneuvers.empty()) throw ArgumentError("--maneuver: expected at least one maneuver definition");
   if (options.jobs < 1) throw ArgumentError(fmt::format("--jobs {}: expected at least 1", options.jobs));
-  if (!data::ConfigNode::LoadFile(case_file).Has("maneuver")) {
-    throw ArgumentError(fmt::format("--maneuver {}: the case {} has no maneuver: section; expected a free-running "
-                                    "case with maneuver: {{kind, execute_time}}",
-                                    options.maneuvers.front(), case_file.string()));
-  }
-  const fs::path output = OutputDirectory(case_file, options);
+  const data::ConfigNode root = data::ConfigNode::LoadFile(case_file);
+  RequireManeuverSection(root, options.maneuvers.front());
+  const fs::path output = OutputDirectory(root, case_file, options);
   ManeuverCampaignSummary summary;
   summary.runs = PlanRuns(options.maneuvers, output);
   if (options.jobs > 1 && summary.runs.size() > 1) {

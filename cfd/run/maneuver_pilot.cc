@@ -23,15 +23,18 @@ T* FindActuator(const Case& c) {
 
 }  // namespace
 
+void RequireManeuverSection(const data::ConfigNode& root, const std::string& kind_override) {
+  if (kind_override.empty() || root.Has("maneuver")) return;
+  throw ArgumentError(fmt::format("--maneuver {}: the case {} has no maneuver: section; expected a free-running case "
+                                  "with maneuver: {{kind, execute_time}}",
+                                  kind_override, root.source()));
+}
+
 std::optional<ManeuverPilotSettings> LoadManeuverPilot(const data::ConfigNode& root, const Case& c,
                                                        const std::filesystem::path& output_directory,
                                                        const std::string& kind_override) {
-  if (!root.Has("maneuver")) {
-    if (kind_override.empty()) return std::nullopt;
-    throw ArgumentError(fmt::format("--maneuver {}: the case {} has no maneuver: section; expected a free-running "
-                                    "case with maneuver: {{kind, execute_time}}",
-                                    kind_override, root.source()));
-  }
+  RequireManeuverSection(root, kind_override);
+  if (!root.Has("maneuver")) return std::nullopt;
   const data::ConfigNode node = root["maneuver"];
   node.ExpectKeys({"kind", "execute_time", "output"});
   if (!c.free_running) node.Fail("no maneuver: section without motion: {kind: free} (a maneuver needs a free body)");

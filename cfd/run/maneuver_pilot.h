@@ -41,6 +41,10 @@ class PropellerActuator;
 // Throws ConfigError for a maneuver the case cannot fly (no rudder: section,
 // a crash stop, an execute before the body is released) or a bad key, and
 // ArgumentError for an override the case has no maneuver: section for.
+// Throws the ArgumentError above when `kind_override` is non-empty and the
+// case (`root`) has no maneuver: section.
+void RequireManeuverSection(const data::ConfigNode& root, const std::string& kind_override);
+
 std::optional<ManeuverPilotSettings> LoadManeuverPilot(const data::ConfigNode& root, const Case& c,
                                                        const std::filesystem::path& output_directory,
                                                        const std::string& kind_override = {});

@@ -2,28 +2,21 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cmath>
 #include <numbers>
 
 namespace kelvin::sim {
 
-MotionExtent TrajectoryExtent(const Trajectory& trajectory, double Lpp) {
-  MotionExtent e;
-  for (const TrajectorySample& s : trajectory.samples()) {
-    const double U = std::hypot(s.u, s.v);
-    if (!(U > 0.0)) continue;
-    e.drift = std::max(e.drift, std::atan2(std::abs(s.v), s.u));
-    e.r_prime = std::max(e.r_prime, std::abs(s.r) * Lpp / U);
-  }
+MotionRange TrajectoryExtent(const Trajectory& trajectory, double Lpp) {
+  MotionRange e;
+  for (const TrajectorySample& s : trajectory.samples()) e.Include(s.u, s.v, s.r, Lpp);
   return e;
 }
 
 std::string ExtrapolationWarning(const DerivativeSet& set, const Trajectory& trajectory, double Lpp,
                                  const std::string& what) {
   if (!set.range) return "";
-  const MotionExtent e = TrajectoryExtent(trajectory, Lpp);
-  const IdentifiedRange& r = *set.range;
+  const MotionRange e = TrajectoryExtent(trajectory, Lpp);
+  const MotionRange& r = *set.range;
   const bool drift_beyond = e.drift > (1.0 + kRangeMargin) * r.drift;
   const bool rate_beyond = e.r_prime > (1.0 + kRangeMargin) * r.r_prime;
   if (!drift_beyond && !rate_beyond) return "";

@@ -11,13 +11,8 @@
 
 namespace kelvin::sim {
 
-// The largest |drift angle| atan2(|v|, u) (rad) and |r'| = |r| Lpp / U of a
-// trajectory (samples at rest are skipped).
-struct MotionExtent {
-  double drift = 0.0;
-  double r_prime = 0.0;
-};
-MotionExtent TrajectoryExtent(const Trajectory& trajectory, double Lpp);
+// The range of a trajectory's motions (MotionRange::Include of each sample).
+MotionRange TrajectoryExtent(const Trajectory& trajectory, double Lpp);
 
 // A maneuver is beyond the range when its drift or r' exceeds the set's by
 // more than kRangeMargin of it (the polynomials are smooth; a few per cent

@@ -49,7 +49,7 @@ DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesys
   if (const auto fit = root.Find("fit")) {
     if (const auto range = fit->Find("range")) {
       range->ExpectKeys({"drift_deg", "r_prime"});
-      IdentifiedRange r;
+      MotionRange r;
       r.drift = range->Get<double>("drift_deg") * std::numbers::pi / 180.0;
       r.r_prime = range->Get<double>("r_prime");
       if (!(r.drift >= 0 && r.drift <= std::numbers::pi)) (*range)["drift_deg"].Fail("an angle in [0, 180] deg");
@@ -67,6 +67,13 @@ DerivativeSet LoadDerivativeSet(const data::ConfigNode& root, const std::filesys
     set.check = c;
   }
   return set;
+}
+
+void MotionRange::Include(double u, double v, double r, double Lpp) {
+  const double U = std::hypot(u, v);
+  if (!(U > 0.0)) return;
+  drift = std::max(drift, std::atan2(std::abs(v), u));
+  r_prime = std::max(r_prime, std::abs(r) * Lpp / U);
 }
 
 std::array<double*, kInteractionKeys.size()> InteractionFields(PropellerParameters& pp, RudderParameters& rp) {

@@ -38,12 +38,16 @@ struct DerivativeCheck {
   std::string summary;
 };
 
-// The motions a set was identified over (fit.range, written by kelvin
-// identify): the largest |drift angle| and |r'| its captive runs reached. A
-// maneuver beyond them flies the derivatives extrapolated.
-struct IdentifiedRange {
+// The largest |drift angle| atan2(|v|, u) and |r'| = |r| Lpp / U of a set of
+// motions: those a set was identified over (fit.range, written by kelvin
+// identify from its captive runs; a maneuver beyond them flies the
+// derivatives extrapolated), or those a maneuver reached.
+struct MotionRange {
   double drift = 0.0;    // rad
   double r_prime = 0.0;  // r Lpp / U
+  // Widens the range to the motion (u, v, r) of a ship of length Lpp; a
+  // motion at rest is skipped.
+  void Include(double u, double v, double r, double Lpp);
 };
 
 struct DerivativeSet {
@@ -54,7 +58,7 @@ struct DerivativeSet {
   HullCoefficients<double> hull;
   std::map<std::string, double> interaction;  // the keys above
   std::optional<DerivativeCheck> check;
-  std::optional<IdentifiedRange> range;  // fit.range; sets written before it existed have none
+  std::optional<MotionRange> range;  // fit.range; sets written before it existed have none
 };
 
 // The interaction keys a set may carry, in ship-file order.

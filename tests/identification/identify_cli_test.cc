@@ -59,7 +59,7 @@ TEST(IdentifyCliTest, CampaignToDerivativeSetLoadableAsShip) {
   EXPECT_FALSE(set.check.has_value());
   // Its range: what the campaign's runs reached, to the 6 digits written.
   ASSERT_TRUE(set.range.has_value());
-  const sim::IdentifiedRange range = CampaignRange(Campaign());
+  const sim::MotionRange range = CampaignRange(Campaign());
   EXPECT_NEAR(set.range->drift, range.drift, 1e-5 * range.drift);
   EXPECT_NEAR(set.range->r_prime, range.r_prime, 1e-5 * range.r_prime);
   // HDF5 beside it: the full covariance and per-run measured/fitted forces.
@@ -100,7 +100,7 @@ TEST(IdentifyCliTest, CampaignRangeIsTheLargestDriftAndYawRate) {
   circle.motion.r_prime = -0.6;
   circle.time = {0.0, 1.0};
   c.runs = {drift, circle};
-  const sim::IdentifiedRange r = CampaignRange(c);
+  const sim::MotionRange r = CampaignRange(c);
   EXPECT_NEAR(r.drift, 12.0 * M_PI / 180.0, 1e-12);
   EXPECT_NEAR(r.r_prime, 0.6, 1e-12);
 }

@@ -112,7 +112,7 @@ TEST(SurrogateCheck, ManeuversBeyondTheIdentifiedRangeAreNamed) {
   const SurrogateCheck n = RunSurrogateCheck(Options(narrow, "wigley", {turning}));
   ASSERT_EQ(n.maneuvers.size(), 1u);
   const ManeuverCheck& m = n.maneuvers[0];
-  const MotionExtent e = TrajectoryExtent(m.reference.result.trajectory, m.reference.result.Lpp);
+  const MotionRange e = TrajectoryExtent(m.reference.result.trajectory, m.reference.result.Lpp);
   EXPECT_GT(e.drift, 2.0 * std::numbers::pi / 180.0);
   EXPECT_GT(e.r_prime, 0.1);
   ASSERT_EQ(m.warnings.size(), 2u);
