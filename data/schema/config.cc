@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <ios>
 
 namespace kelvin::data {
 
@@ -66,10 +68,16 @@ ConfigNode ConfigNode::LoadFile(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) {
     throw ConfigError(fmt::format("{}: file not found", path.string()));
   }
+  if (std::filesystem::is_directory(path)) {
+    throw ConfigError(fmt::format("{}: is a directory; expected a YAML file", path.string()));
+  }
   try {
     return ConfigNode(YAML::LoadFile(path.string()), path.string(), "");
   } catch (const YAML::Exception& e) {
     throw ConfigError(fmt::format("{}:{}: YAML syntax error: {}", path.string(), e.mark.line + 1, e.msg));
+  } catch (const std::ios_base::failure& e) {
+    // A read error of the stream (a special file, an I/O error) escapes yaml-cpp as the stream's own exception.
+    throw ConfigError(fmt::format("{}: cannot be read ({}); expected a YAML file", path.string(), e.what()));
   }
 }
 

@@ -84,6 +84,17 @@ TEST(ConfigTest, MissingFile) {
   EXPECT_THROW(ConfigNode::LoadFile("/nonexistent/ship.yaml"), ConfigError);
 }
 
+// Found by the mesh_case_yaml fuzz target: a ship path naming a directory
+// ended the program (std::terminate on the stream's read error).
+TEST(ConfigTest, DirectoryIsRefusedByName) {
+  try {
+    ConfigNode::LoadFile("/");
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/: is a directory; expected a YAML file"));
+  }
+}
+
 TEST(ConfigTest, ListsOfNumbers) {
   const auto root = ConfigNode::LoadString("v: [1, 2.5, -3]\nw: [1, x]\n", "l.yaml");
   EXPECT_EQ(root.Get<std::vector<double>>("v"), (std::vector<double>{1, 2.5, -3}));
