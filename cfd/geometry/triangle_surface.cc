@@ -30,6 +30,7 @@ namespace {
 // The whole file, as bytes.
 std::string ReadBytes(const fs::path& path) {
   if (!fs::exists(path)) Fail(path, "file not found");
+  if (fs::is_directory(path)) Fail(path, "is a directory; expected a surface file");
   std::ifstream in(path, std::ios::binary);
   if (!in) Fail(path, "cannot open");
   std::string raw(static_cast<std::size_t>(fs::file_size(path)), '\0');

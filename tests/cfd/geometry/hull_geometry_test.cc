@@ -182,6 +182,14 @@ TEST(BadSurfaceTest, TruncatedBinaryStl) {
                                     s.triangles.size(), size, size - 20)));
 }
 
+// A ship file's hull path that names a directory: before, the file size
+// query threw a bare filesystem error.
+TEST(BadSurfaceTest, DirectoryIsRefusedByName) {
+  ScopedTempDir dir;
+  std::filesystem::create_directory(dir / "hull.stl");
+  EXPECT_THAT(ErrorOf([&] { ReadSurface(dir / "hull.stl"); }), HasSubstr("hull.stl: is a directory; expected a surface file"));
+}
+
 TEST(BadSurfaceTest, NanVertex) {
   ScopedTempDir dir;
   std::ofstream(dir / "nan.stl") << "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 nan 0\n"
