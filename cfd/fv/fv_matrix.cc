@@ -64,7 +64,7 @@ void FvMatrix<T>::ComponentSystem(int k, std::vector<double>& diag_k, std::vecto
   }
 }
 
-NonOrthGeometry::NonOrthGeometry(const Mesh& mesh) {
+NonOrthGeometry::NonOrthGeometry(const Mesh& mesh, NonOrthogonalForm form) {
   const int ni = mesh.n_internal_faces();
   delta_coeffs.resize(ni);
   correction.resize(ni);
@@ -73,6 +73,17 @@ NonOrthGeometry::NonOrthGeometry(const Mesh& mesh) {
     const Vector3& d = mesh.deltas()[f];
     delta_coeffs[f] = 1.0 / std::max(n.dot(d), 0.05 * d.norm());
     correction[f] = n - d * delta_coeffs[f];
+  }
+  if (form == NonOrthogonalForm::kFaceCentre) {
+    owner_tangent.resize(ni);
+    neighbour_tangent.resize(ni);
+    for (int f = 0; f < ni; ++f) {
+      const Vector3 n = mesh.face_areas()[f] / mesh.face_area_magnitudes()[f];
+      auto along_face = [&n](const Vector3& r) -> Vector3 { return r - r.dot(n) * n; };
+      owner_tangent[f] = delta_coeffs[f] * along_face(mesh.face_centres()[f] - mesh.cell_centres()[mesh.owner()[f]]);
+      neighbour_tangent[f] =
+          delta_coeffs[f] * along_face(mesh.face_centres()[f] - mesh.cell_centres()[mesh.neighbour()[f]]);
+    }
   }
   boundary_correction.resize(mesh.n_boundary_faces());
   for (int f = ni; f < mesh.n_faces(); ++f) {
@@ -86,6 +97,8 @@ NonOrthGeometry::NonOrthGeometry(const Mesh& mesh) {
     // Orthogonal mesh: the vectors are all zero and never read.
     correction = std::vector<Vector3>();
     boundary_correction = std::vector<Vector3>();
+    owner_tangent = std::vector<Vector3>();
+    neighbour_tangent = std::vector<Vector3>();
   }
 }
 
@@ -110,6 +123,17 @@ namespace {
 
 inline double Dot(const Vector3& g, const Vector3& d) { return g.dot(d); }
 inline Vector3 Dot(const Matrix3& g, const Vector3& d) { return g * d; }
+
+// The explicit non-orthogonal part of the face-normal gradient of face f
+// (NonOrthogonalForm), from the owner and neighbour cell gradients.
+template <typename G>
+auto NonOrthogonalPart(const NonOrthGeometry& geo, int f, const G& grad_owner, const G& grad_neighbour, double w)
+    -> decltype(Dot(grad_owner, geo.correction[f])) {
+  if (!geo.owner_tangent.empty()) {
+    return Dot(grad_neighbour, geo.neighbour_tangent[f]) - Dot(grad_owner, geo.owner_tangent[f]);
+  }
+  return Dot(G(w * grad_owner + (1.0 - w) * grad_neighbour), geo.correction[f]);
+}
 
 inline double VanLeer(double r) { return (r + std::abs(r)) / (1.0 + std::abs(r)); }
 
@@ -201,8 +225,7 @@ void LaplacianImpl(FvMatrix<T>& m, const CellField<T>& field, const Gamma& gamma
     m.upper[f] -= a;
     m.lower[f] -= a;
     if (grad) {
-      const GradType<T> g = w[f] * (*grad)[owner[f]] + (1.0 - w[f]) * (*grad)[neighbour[f]];
-      const T corr = gf * mag[f] * Dot(g, geo.correction[f]);
+      const T corr = gf * mag[f] * T(NonOrthogonalPart(geo, f, (*grad)[owner[f]], (*grad)[neighbour[f]], w[f]));
       m.source[owner[f]] += corr;
       m.source[neighbour[f]] -= corr;
     }
@@ -369,8 +392,7 @@ void NonOrthogonalFlux(const Mesh& mesh, std::span<const double> gamma_faces, st
   const auto w = mesh.weights();
   const auto mag = mesh.face_area_magnitudes();
   for (int f = 0; f < ni; ++f) {
-    const Vector3 g = w[f] * grad[owner[f]] + (1.0 - w[f]) * grad[neighbour[f]];
-    flux[f] = gamma_faces[f] * mag[f] * g.dot(geo.correction[f]);
+    flux[f] = gamma_faces[f] * mag[f] * NonOrthogonalPart(geo, f, grad[owner[f]], grad[neighbour[f]], w[f]);
   }
 }
 

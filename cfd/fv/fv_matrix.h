@@ -133,12 +133,27 @@ void LaplacianFlux(const CellField<double>& field, std::span<const double> gamma
 void NonOrthogonalFlux(const Mesh& mesh, std::span<const double> gamma_faces, std::span<const Vector3> grad,
                        const NonOrthGeometry& geo, std::vector<double>& flux);
 
+// Where the explicit part of the corrected face-normal gradient takes the
+// cell gradients (docs/formulation.md section 4.4):
+//   kInterpolated: k_f . (w grad_P + (1 - w) grad_N), the gradient
+//     interpolated to where the owner-neighbour line meets the face
+//     (OpenFOAM's "corrected");
+//   kFaceCentre: dc_f (grad_N . t_N - grad_P . t_P), with t the part of
+//     (x_f - x_cell) along the face: each cell's value is carried to the
+//     normal through the face centre. The same for a linear field; on the
+//     2:1 split faces of refinement interfaces it keeps the manufactured
+//     solution's velocity at second order (mms_order_test).
+enum class NonOrthogonalForm { kInterpolated, kFaceCentre };
+
 // Non-orthogonal correction vectors k_f = n_f - d_f / (n_f . d_f) and the
 // matching delta coefficients 1 / (n_f . d_f), as OpenFOAM's "corrected".
 struct NonOrthGeometry {
-  explicit NonOrthGeometry(const Mesh& mesh);
+  explicit NonOrthGeometry(const Mesh& mesh, NonOrthogonalForm form = NonOrthogonalForm::kInterpolated);
   std::vector<double> delta_coeffs;    // internal faces
   std::vector<Vector3> correction;     // internal faces
+  // kFaceCentre only (empty otherwise): dc_f t_P and dc_f t_N per internal face.
+  std::vector<Vector3> owner_tangent;
+  std::vector<Vector3> neighbour_tangent;
   // Boundary faces: n - d_b / (n . d_b) with d_b = x_f - x_P, so that
   // snGrad = dc (phi_b - phi_P) + k_b . grad(phi)_P on skewed wall cells.
   std::vector<Vector3> boundary_correction;

@@ -18,6 +18,11 @@ struct SchemeOptions {
   // Explicit non-orthogonal correction of the Laplacians (face gradient from
   // the interpolated cell gradient).
   bool non_orthogonal_correction = true;
+  // Its form (fv_matrix.h): false keeps OpenFOAM's interpolated gradient;
+  // true carries each cell's value to the normal through the face centre,
+  // which refinement interfaces (2:1 split faces) need for second order.
+  // Used by the momentum and pressure equations of PimpleSolver.
+  bool face_centre_correction = false;
   // Skewness correction of the face interpolation in the Rhie-Chow flux
   // (phi_f += grad(phi)_f . (x_f - x_f')): keeps second order on skewed and
   // polyhedral meshes, at the cost of one more vector gradient per corrector.

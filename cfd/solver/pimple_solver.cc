@@ -8,6 +8,13 @@
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
+namespace {
+
+NonOrthogonalForm NonOrthForm(const SchemeOptions& schemes) {
+  return schemes.face_centre_correction ? NonOrthogonalForm::kFaceCentre : NonOrthogonalForm::kInterpolated;
+}
+
+}  // namespace
 
 void PhysicsOptions::Validate() const {
   if (!(nu > 0.0) || !std::isfinite(nu)) throw ConfigError(fmt::format("physics.nu = {}; expected > 0 m^2/s", nu));
@@ -40,7 +47,7 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
       phi_(mesh.n_faces(), 0.0),
       mesh_flux_(mesh.n_faces(), 0.0),
       grad_(mesh, schemes.gradient),
-      non_orth_(mesh),
+      non_orth_(mesh, NonOrthForm(schemes)),
       UEqn_(mesh),
       pEqn_(mesh),
       system_(mesh) {
@@ -85,7 +92,7 @@ void PimpleSolver::SetTurbulence(std::unique_ptr<TurbulenceModel> model) {
 void PimpleSolver::RefreshGeometry() {
   grad_.UpdateGeometry();
   if (turbulence_) turbulence_->RefreshGeometry();
-  non_orth_ = NonOrthGeometry(mesh_);
+  non_orth_ = NonOrthGeometry(mesh_, NonOrthForm(schemes_));
   non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;
   if (schemes_.skew_correction) skew_ = mesh_.SkewVectors();
 }
