@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "cfd/parallel/domain_part.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -37,20 +38,26 @@ void EnsureMpi() {
 }
 
 struct HypreSolver::Impl {
-  int n = 0;
+  int n = 0;            // rows solved here
+  int matrix_rows = 0;  // rows of the matrix given (local cells)
   HYPRE_IJMatrix ij_a = nullptr;
   HYPRE_IJVector ij_b = nullptr;
   HYPRE_IJVector ij_x = nullptr;
   HYPRE_ParCSRMatrix a = nullptr;
   HYPRE_ParVector b = nullptr;
   HYPRE_ParVector x = nullptr;
-  HYPRE_Solver krylov = nullptr;  // PCG or BiCGStab
-  HYPRE_Solver precond = nullptr;  // BoomerAMG or ILU
+  HYPRE_Solver krylov = nullptr;   // PCG or BiCGStab
+  HYPRE_Solver precond = nullptr;  // BoomerAMG or ILU (null: diagonal scaling)
   std::vector<HYPRE_Int> rows, ncols, row_index;
+  // The columns in global rows (decomposed meshes only; serially the
+  // matrix's own column indices are the global ones).
+  std::vector<HYPRE_Int> columns;
   bool has_setup = false;
+  const HYPRE_Int* Columns(const CsrMatrix& m) const { return columns.empty() ? m.innerIndexPtr() : columns.data(); }
 };
 
-HypreSolver::HypreSolver(const LinearSolverOptions& options) : options_(options) {
+HypreSolver::HypreSolver(const LinearSolverOptions& options, const DomainPart* part)
+    : options_(options), part_(part && part->parallel() ? part : nullptr) {
   options_.Validate();
   EnsureMpi();
 }
@@ -60,7 +67,7 @@ HypreSolver::~HypreSolver() { Destroy(); }
 void HypreSolver::Destroy() {
   if (!impl_) return;
   if (impl_->krylov) {
-    if (Amg()) {
+    if (Cg()) {
       HYPRE_ParCSRPCGDestroy(impl_->krylov);
     } else {
       HYPRE_ParCSRBiCGSTABDestroy(impl_->krylov);
@@ -82,31 +89,54 @@ void HypreSolver::Destroy() {
 void HypreSolver::Create(const CsrMatrix& a) {
   Destroy();
   impl_ = std::make_unique<Impl>();
+  CreateMatrix(a);
+  CreatePreconditioner();
+  CreateKrylov();
+  need_setup_ = true;
+}
+
+void HypreSolver::CreateMatrix(const CsrMatrix& a) {
   Impl& s = *impl_;
-  s.n = static_cast<int>(a.rows());
-  const HYPRE_Int lo = 0;
-  const HYPRE_Int hi = s.n - 1;
+  const MPI_Comm comm = part_ ? part_->comm : MPI_COMM_SELF;  // serial solves are each process's own
+  s.matrix_rows = static_cast<int>(a.rows());
+  s.n = part_ ? part_->n_owned : static_cast<int>(a.rows());
+  const HYPRE_Int lo = part_ ? part_->first_row : 0;
+  const HYPRE_Int hi = lo + s.n - 1;
   s.rows.resize(s.n);
   s.ncols.resize(s.n);
   s.row_index.resize(s.n);
+  std::vector<HYPRE_Int> diag(s.n, 0), offd(s.n, 0);
+  const int* outer = a.outerIndexPtr();
   for (int r = 0; r < s.n; ++r) {
-    s.rows[r] = r;
-    s.ncols[r] = a.outerIndexPtr()[r + 1] - a.outerIndexPtr()[r];
-    s.row_index[r] = r;
+    s.rows[r] = lo + r;
+    s.ncols[r] = outer[r + 1] - outer[r];
+    s.row_index[r] = lo + r;
+    diag[r] = s.ncols[r];
+  }
+  if (part_) {
+    // Owned columns go to the diagonal block, ghost columns off it.
+    s.columns.resize(outer[s.n]);
+    for (int r = 0; r < s.n; ++r) {
+      diag[r] = 0;
+      for (int k = outer[r]; k < outer[r + 1]; ++k) {
+        const int c = a.innerIndexPtr()[k];
+        s.columns[k] = part_->rows[c];
+        (c < part_->n_owned ? diag[r] : offd[r])++;
+      }
+    }
   }
   // Sparsity, set once.
-  HYPRE_IJMatrixCreate(MPI_COMM_WORLD, lo, hi, lo, hi, &s.ij_a);
+  HYPRE_IJMatrixCreate(comm, lo, hi, lo, hi, &s.ij_a);
   HYPRE_IJMatrixSetObjectType(s.ij_a, HYPRE_PARCSR);
-  std::vector<HYPRE_Int> offd(s.n, 0);
-  HYPRE_IJMatrixSetDiagOffdSizes(s.ij_a, s.ncols.data(), offd.data());
+  HYPRE_IJMatrixSetDiagOffdSizes(s.ij_a, diag.data(), offd.data());
   HYPRE_IJMatrixInitialize(s.ij_a);
-  HYPRE_IJMatrixSetValues(s.ij_a, s.n, s.ncols.data(), s.rows.data(), a.innerIndexPtr(), a.valuePtr());
+  HYPRE_IJMatrixSetValues(s.ij_a, s.n, s.ncols.data(), s.rows.data(), s.Columns(a), a.valuePtr());
   HYPRE_IJMatrixAssemble(s.ij_a);
   void* obj = nullptr;
   HYPRE_IJMatrixGetObject(s.ij_a, &obj);
   s.a = static_cast<HYPRE_ParCSRMatrix>(obj);
   for (HYPRE_IJVector* v : {&s.ij_b, &s.ij_x}) {
-    HYPRE_IJVectorCreate(MPI_COMM_WORLD, lo, hi, v);
+    HYPRE_IJVectorCreate(comm, lo, hi, v);
     HYPRE_IJVectorSetObjectType(*v, HYPRE_PARCSR);
     HYPRE_IJVectorInitialize(*v);
     HYPRE_IJVectorAssemble(*v);
@@ -115,66 +145,72 @@ void HypreSolver::Create(const CsrMatrix& a) {
   s.b = static_cast<HYPRE_ParVector>(obj);
   HYPRE_IJVectorGetObject(s.ij_x, &obj);
   s.x = static_cast<HYPRE_ParVector>(obj);
+}
 
+void HypreSolver::CreatePreconditioner() {
+  Impl& s = *impl_;
   if (Amg()) {
-    CreateAmgCg();
-  } else {
-    CreateIluBiCgStab();
+    const AmgOptions& amg = options_.amg;
+    HYPRE_BoomerAMGCreate(&s.precond);
+    HYPRE_BoomerAMGSetCoarsenType(s.precond, 10);  // HMIS
+    HYPRE_BoomerAMGSetInterpType(s.precond, 6);    // extended+i
+    HYPRE_BoomerAMGSetPMaxElmts(s.precond, amg.interp_max_elements);
+    HYPRE_BoomerAMGSetAggNumLevels(s.precond, amg.aggressive_levels);
+    HYPRE_BoomerAMGSetAggInterpType(s.precond, 4);  // multipass on aggressive levels
+    HYPRE_BoomerAMGSetStrongThreshold(s.precond, amg.strong_threshold);
+    HYPRE_BoomerAMGSetCycleRelaxType(s.precond, 13, 1);  // l1-Gauss-Seidel forward, down
+    HYPRE_BoomerAMGSetCycleRelaxType(s.precond, 14, 2);  // l1-Gauss-Seidel backward, up
+    HYPRE_BoomerAMGSetCycleRelaxType(s.precond, 9, 3);   // Gaussian elimination, coarsest
+    HYPRE_BoomerAMGSetNumSweeps(s.precond, 1);
+    HYPRE_BoomerAMGSetMaxIter(s.precond, 1);
+    HYPRE_BoomerAMGSetTol(s.precond, 0.0);
+    HYPRE_BoomerAMGSetPrintLevel(s.precond, 0);
+  } else if (options_.type == LinearSolverOptions::Type::kBiCgStabIlu) {
+    HYPRE_ILUCreate(&s.precond);
+    HYPRE_ILUSetType(s.precond, 0);             // block Jacobi ILU(k): one block per rank
+    HYPRE_ILUSetLevelOfFill(s.precond, 0);      // ILU(0): the matrix's own sparsity
+    HYPRE_ILUSetLocalReordering(s.precond, 0);  // cell order of the mesh (no RCM pass per setup)
+    HYPRE_ILUSetMaxIter(s.precond, 1);
+    HYPRE_ILUSetTol(s.precond, 0.0);
+    HYPRE_ILUSetPrintLevel(s.precond, 0);
   }
-  need_setup_ = true;
 }
 
-void HypreSolver::CreateAmgCg() {
+void HypreSolver::CreateKrylov() {
   Impl& s = *impl_;
-  const AmgOptions& amg = options_.amg;
-  HYPRE_BoomerAMGCreate(&s.precond);
-  HYPRE_BoomerAMGSetCoarsenType(s.precond, 10);  // HMIS
-  HYPRE_BoomerAMGSetInterpType(s.precond, 6);    // extended+i
-  HYPRE_BoomerAMGSetPMaxElmts(s.precond, amg.interp_max_elements);
-  HYPRE_BoomerAMGSetAggNumLevels(s.precond, amg.aggressive_levels);
-  HYPRE_BoomerAMGSetAggInterpType(s.precond, 4);  // multipass on aggressive levels
-  HYPRE_BoomerAMGSetStrongThreshold(s.precond, amg.strong_threshold);
-  HYPRE_BoomerAMGSetCycleRelaxType(s.precond, 13, 1);  // l1-Gauss-Seidel forward, down
-  HYPRE_BoomerAMGSetCycleRelaxType(s.precond, 14, 2);  // l1-Gauss-Seidel backward, up
-  HYPRE_BoomerAMGSetCycleRelaxType(s.precond, 9, 3);   // Gaussian elimination, coarsest
-  HYPRE_BoomerAMGSetNumSweeps(s.precond, 1);
-  HYPRE_BoomerAMGSetMaxIter(s.precond, 1);
-  HYPRE_BoomerAMGSetTol(s.precond, 0.0);
-  HYPRE_BoomerAMGSetPrintLevel(s.precond, 0);
-
-  HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &s.krylov);
-  HYPRE_PCGSetMaxIter(s.krylov, options_.max_iterations);
-  HYPRE_PCGSetTol(s.krylov, options_.relative_tolerance);
-  HYPRE_PCGSetAbsoluteTol(s.krylov, options_.absolute_tolerance);
-  HYPRE_PCGSetTwoNorm(s.krylov, 1);
-  HYPRE_PCGSetPrintLevel(s.krylov, 0);
-  HYPRE_PCGSetLogging(s.krylov, 1);
-  HYPRE_ParCSRPCGSetPrecond(s.krylov, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, s.precond);
-}
-
-void HypreSolver::CreateIluBiCgStab() {
-  Impl& s = *impl_;
-  HYPRE_ILUCreate(&s.precond);
-  HYPRE_ILUSetType(s.precond, 0);            // block Jacobi ILU(k): one block in serial
-  HYPRE_ILUSetLevelOfFill(s.precond, 0);     // ILU(0): the matrix's own sparsity
-  HYPRE_ILUSetLocalReordering(s.precond, 0); // cell order of the mesh (no RCM pass per setup)
-  HYPRE_ILUSetMaxIter(s.precond, 1);
-  HYPRE_ILUSetTol(s.precond, 0.0);
-  HYPRE_ILUSetPrintLevel(s.precond, 0);
-
-  HYPRE_ParCSRBiCGSTABCreate(MPI_COMM_WORLD, &s.krylov);
+  const MPI_Comm comm = part_ ? part_->comm : MPI_COMM_SELF;  // serial solves are each process's own
+  if (Cg()) {
+    HYPRE_ParCSRPCGCreate(comm, &s.krylov);
+    HYPRE_PCGSetMaxIter(s.krylov, options_.max_iterations);
+    HYPRE_PCGSetTol(s.krylov, options_.relative_tolerance);
+    HYPRE_PCGSetAbsoluteTol(s.krylov, options_.absolute_tolerance);
+    HYPRE_PCGSetTwoNorm(s.krylov, 1);
+    HYPRE_PCGSetPrintLevel(s.krylov, 0);
+    HYPRE_PCGSetLogging(s.krylov, 1);
+    if (Amg()) {
+      HYPRE_ParCSRPCGSetPrecond(s.krylov, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, s.precond);
+    } else {
+      HYPRE_ParCSRPCGSetPrecond(s.krylov, HYPRE_ParCSRDiagScale, HYPRE_ParCSRDiagScaleSetup, nullptr);
+    }
+    return;
+  }
+  HYPRE_ParCSRBiCGSTABCreate(comm, &s.krylov);
   HYPRE_ParCSRBiCGSTABSetMaxIter(s.krylov, options_.max_iterations);
   HYPRE_ParCSRBiCGSTABSetTol(s.krylov, options_.relative_tolerance);
   HYPRE_ParCSRBiCGSTABSetAbsoluteTol(s.krylov, options_.absolute_tolerance);
   HYPRE_ParCSRBiCGSTABSetPrintLevel(s.krylov, 0);
   HYPRE_ParCSRBiCGSTABSetLogging(s.krylov, 1);
-  HYPRE_ParCSRBiCGSTABSetPrecond(s.krylov, HYPRE_ILUSolve, HYPRE_ILUSetup, s.precond);
+  if (s.precond) {
+    HYPRE_ParCSRBiCGSTABSetPrecond(s.krylov, HYPRE_ILUSolve, HYPRE_ILUSetup, s.precond);
+  } else {
+    HYPRE_ParCSRBiCGSTABSetPrecond(s.krylov, HYPRE_ParCSRDiagScale, HYPRE_ParCSRDiagScaleSetup, nullptr);
+  }
 }
 
 void HypreSolver::SetRelativeTolerance(double relative) {
   options_.relative_tolerance = relative;
   if (!impl_) return;
-  if (Amg()) {
+  if (Cg()) {
     HYPRE_PCGSetTol(impl_->krylov, relative);
   } else {
     HYPRE_ParCSRBiCGSTABSetTol(impl_->krylov, relative);
@@ -183,17 +219,17 @@ void HypreSolver::SetRelativeTolerance(double relative) {
 
 SolverSummary HypreSolver::Solve(const CsrMatrix& a, std::span<const double> b, std::span<double> x) {
   SolverSummary summary;
-  if (!impl_ || impl_->n != a.rows()) Create(a);
+  if (!impl_ || impl_->matrix_rows != a.rows()) Create(a);
   Impl& s = *impl_;
-  summary.initial_residual = NormalizedResidual(a, b, x);
+  summary.initial_residual = NormalizedResidual(a, b, x, part_);
   // Values refilled in place in the existing ParCSR matrix.
-  HYPRE_IJMatrixSetValues(s.ij_a, s.n, s.ncols.data(), s.rows.data(), a.innerIndexPtr(), a.valuePtr());
+  HYPRE_IJMatrixSetValues(s.ij_a, s.n, s.ncols.data(), s.rows.data(), s.Columns(a), a.valuePtr());
   HYPRE_IJMatrixAssemble(s.ij_a);
   HYPRE_IJVectorSetValues(s.ij_b, s.n, s.row_index.data(), b.data());
   HYPRE_IJVectorSetValues(s.ij_x, s.n, s.row_index.data(), x.data());
   if (!Amg()) need_setup_ = true;  // a new factorization for the new values
   if (need_setup_ || !s.has_setup) {
-    if (Amg()) {
+    if (Cg()) {
       HYPRE_ParCSRPCGSetup(s.krylov, s.a, s.b, s.x);
     } else {
       HYPRE_ParCSRBiCGSTABSetup(s.krylov, s.a, s.b, s.x);
@@ -205,7 +241,7 @@ SolverSummary HypreSolver::Solve(const CsrMatrix& a, std::span<const double> b, 
   }
   HYPRE_Int iterations = 0;
   HYPRE_Real rel = 0.0;
-  if (Amg()) {
+  if (Cg()) {
     HYPRE_ParCSRPCGSolve(s.krylov, s.a, s.b, s.x);
     HYPRE_PCGGetNumIterations(s.krylov, &iterations);
     HYPRE_PCGGetFinalRelativeResidualNorm(s.krylov, &rel);

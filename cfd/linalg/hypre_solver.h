@@ -6,9 +6,12 @@
 //   equations dominated by convection, such as k and omega at large time
 //   steps). The factorization is redone at every solve (the values change
 //   every step; ILU(0) costs a few matrix-vector products).
+// - kBiCgStabJacobi, kCgJacobi: BiCGStab and CG with diagonal scaling, the
+//   momentum and scalar solvers of a decomposed mesh (Eigen's serially).
 // The sparsity is given once; each solve copies the new values into the
-// existing ParCSR matrix. Runs serially as an MPI singleton; the row
-// partition (ilower..iupper) is where a domain decomposition plugs in.
+// existing ParCSR matrix. Serial runs are MPI singletons with the rows
+// 0..n-1; on a decomposed mesh (cfd/parallel/domain_part.h) each rank gives
+// the rows of its owned cells, with the columns in global row numbers.
 #pragma once
 
 #include <map>
@@ -23,7 +26,8 @@ void EnsureMpi();
 
 class HypreSolver : public LinearSolver {
  public:
-  explicit HypreSolver(const LinearSolverOptions& options);
+  // `part` (null: serial) must outlive the solver.
+  explicit HypreSolver(const LinearSolverOptions& options, const DomainPart* part = nullptr);
   ~HypreSolver() override;
   HypreSolver(const HypreSolver&) = delete;
   HypreSolver& operator=(const HypreSolver&) = delete;
@@ -35,12 +39,16 @@ class HypreSolver : public LinearSolver {
 
  private:
   bool Amg() const { return options_.type == LinearSolverOptions::Type::kPcgAmg; }
+  // CG (AMG or Jacobi) rather than BiCGStab.
+  bool Cg() const { return Amg() || options_.type == LinearSolverOptions::Type::kCgJacobi; }
   void Create(const CsrMatrix& a);
-  void CreateAmgCg();
-  void CreateIluBiCgStab();
+  void CreateMatrix(const CsrMatrix& a);
+  void CreatePreconditioner();
+  void CreateKrylov();
   void Destroy();
 
   LinearSolverOptions options_;
+  const DomainPart* part_ = nullptr;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   bool need_setup_ = true;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "cfd/linalg/hypre_solver.h"
+#include "cfd/parallel/domain_part.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -30,12 +31,14 @@ void LinearSolverOptions::Validate() const {
   amg.Validate();
 }
 
-double NormalizedResidual(const CsrMatrix& a, std::span<const double> b, std::span<const double> x) {
-  const int n = static_cast<int>(a.rows());
-  if (n == 0) return 0.0;
+double NormalizedResidual(const CsrMatrix& a, std::span<const double> b, std::span<const double> x,
+                          const DomainPart* part) {
+  const bool parallel = part && part->parallel();
+  const int n = parallel ? part->n_owned : static_cast<int>(a.rows());
+  if (!parallel && n == 0) return 0.0;
   double xbar = 0.0;
-  for (double v : x) xbar += v;
-  xbar /= n;
+  for (int r = 0; r < n; ++r) xbar += x[r];
+  xbar = parallel ? part->Sum(xbar) / static_cast<double>(part->n_global_cells) : xbar / n;
   double res = 0.0, norm = 0.0;
   const int* outer = a.outerIndexPtr();
   const int* inner = a.innerIndexPtr();
@@ -48,6 +51,10 @@ double NormalizedResidual(const CsrMatrix& a, std::span<const double> b, std::sp
     }
     res += std::abs(b[r] - ax);
     norm += std::abs(ax - row_sum * xbar) + std::abs(b[r] - row_sum * xbar);
+  }
+  if (parallel) {
+    res = part->Sum(res);
+    norm = part->Sum(norm);
   }
   return res / (norm + 1e-20);
 }
@@ -106,8 +113,9 @@ class CgJacobi : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> LinearSolver::Create(const LinearSolverOptions& options) {
+std::unique_ptr<LinearSolver> LinearSolver::Create(const LinearSolverOptions& options, const DomainPart* part) {
   options.Validate();
+  if (part && part->parallel()) return std::make_unique<HypreSolver>(options, part);
   switch (options.type) {
     case LinearSolverOptions::Type::kBiCgStabJacobi:
       return std::make_unique<BiCgStabJacobi>(options);

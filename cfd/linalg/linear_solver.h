@@ -3,6 +3,9 @@
 // BoomerAMG (see hypre_solver.h); momentum and scalars use BiCGStab with
 // a Jacobi preconditioner (Eigen); the k and omega equations of SST use
 // hypre's BiCGStab with an ILU(0) preconditioner.
+// On a decomposed mesh (a parallel DomainPart) every solver is hypre's, on
+// the global rows of the owned cells: BiCGStab and CG with hypre's Jacobi
+// (diagonal scaling) in place of Eigen's.
 #pragma once
 
 #include <memory>
@@ -12,6 +15,8 @@
 #include "cfd/linalg/sparse_system.h"
 
 namespace kelvin::cfd {
+
+struct DomainPart;
 
 struct AmgOptions {
   // Strength threshold: 0.25 for uniform meshes, 0.5 for wall-graded ones.
@@ -57,10 +62,15 @@ class LinearSolver {
   virtual void RequestSetup() {}
   // Changes the relative tolerance of the next solves.
   virtual void SetRelativeTolerance(double relative) = 0;
-  static std::unique_ptr<LinearSolver> Create(const LinearSolverOptions& options);
+  // `part` (null: serial) must outlive the solver. On a parallel part the
+  // matrix has a row per local cell; the rows of the owned cells are
+  // solved, and x's ghost entries must be current (they are read, not set).
+  static std::unique_ptr<LinearSolver> Create(const LinearSolverOptions& options, const DomainPart* part = nullptr);
 };
 
-// sum|b - Ax| / (sum|Ax - A xbar| + |b - A xbar|), OpenFOAM's normalization.
-double NormalizedResidual(const CsrMatrix& a, std::span<const double> b, std::span<const double> x);
+// sum|b - Ax| / (sum|Ax - A xbar| + |b - A xbar|), OpenFOAM's normalization;
+// on a parallel part the sums run over the owned rows of every rank.
+double NormalizedResidual(const CsrMatrix& a, std::span<const double> b, std::span<const double> x,
+                          const DomainPart* part = nullptr);
 
 }  // namespace kelvin::cfd

@@ -22,6 +22,8 @@ std::string PatchKindName(PatchKind kind) {
       return "symmetryPlane";
     case PatchKind::kEmpty:
       return "empty";
+    case PatchKind::kProcessor:
+      return "processor";
   }
   return "patch";
 }

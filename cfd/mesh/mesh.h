@@ -19,8 +19,10 @@ namespace kelvin::cfd {
 using Vector3 = Eigen::Vector3d;
 
 // Patch kinds as OpenFOAM's boundary file names them. `kEmpty` marks the
-// front and back of a one-cell-thick 2D mesh.
-enum class PatchKind { kPatch, kWall, kSymmetry, kEmpty };
+// front and back of a one-cell-thick 2D mesh. `kProcessor` holds the outer
+// faces of the ghost cells of a rank's part of a decomposed mesh
+// (cfd/parallel/decompose.h); no condition of the case applies there.
+enum class PatchKind { kPatch, kWall, kSymmetry, kEmpty, kProcessor };
 
 struct Patch {
   std::string name;

@@ -37,8 +37,10 @@ void PimpleOptions::Validate() const {
 }
 
 PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptions schemes, PimpleOptions pimple,
-                           std::unique_ptr<VectorField> U, std::unique_ptr<ScalarField> p)
+                           std::unique_ptr<VectorField> U, std::unique_ptr<ScalarField> p,
+                           std::shared_ptr<const DomainPart> part)
     : mesh_(mesh),
+      part_(std::move(part)),
       physics_(std::move(physics)),
       schemes_(schemes),
       pimple_(pimple),
@@ -54,9 +56,10 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
   physics_.Validate();
   schemes_.Validate();
   pimple_.Validate();
-  if (pimple_.p_ref_cell < 0 || pimple_.p_ref_cell >= mesh.n_cells()) {
+  const long long n_cells = Parallel() ? part_->n_global_cells : mesh.n_cells();
+  if (pimple_.p_ref_cell < 0 || pimple_.p_ref_cell >= n_cells) {
     throw ConfigError(fmt::format("solution.p_ref_cell = {}; expected a cell index in [0, {})", pimple_.p_ref_cell,
-                                  mesh.n_cells()));
+                                  n_cells));
   }
   for (const Patch& patch : mesh.patches()) {
     if (patch.kind != PatchKind::kEmpty) continue;
@@ -67,11 +70,19 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
       }
     }
   }
+  // A rank with no face of the empty patches agrees with those that have one.
+  if (Parallel()) {
+    for (bool& solve : solve_component_) solve = part_->All(solve);
+  }
   // The corrections vanish identically on orthogonal meshes: skip their work.
   non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;
   if (schemes_.skew_correction) skew_ = mesh.SkewVectors();
-  momentum_solver_ = LinearSolver::Create(pimple_.momentum_solver);
-  pressure_solver_ = LinearSolver::Create(pimple_.pressure_solver);
+  momentum_solver_ = LinearSolver::Create(pimple_.momentum_solver, part_.get());
+  pressure_solver_ = LinearSolver::Create(pimple_.pressure_solver, part_.get());
+}
+
+int PimpleSolver::ReferenceCell() const {
+  return Parallel() ? part_->OwnedCell(pimple_.p_ref_cell) : pimple_.p_ref_cell;
 }
 
 void PimpleSolver::SetMeshFlux(std::vector<double> mesh_flux) {
@@ -85,6 +96,11 @@ void PimpleSolver::SetCellSource(std::vector<Vector3> source) {
 }
 
 void PimpleSolver::SetTurbulence(std::unique_ptr<TurbulenceModel> model) {
+  if (model && Parallel()) {
+    throw ConfigError(fmt::format("turbulence: the RANS models do not run on {} ranks yet; expected a laminar case "
+                                  "or one rank",
+                                  part_->size));
+  }
   turbulence_ = std::move(model);
   if (initialized_ && turbulence_) turbulence_->Initialize(*U_, RelativeFlux());
 }
@@ -130,6 +146,8 @@ std::span<const double> PimpleSolver::RelativeFlux() {
 
 void PimpleSolver::Initialize() {
   MoveMesh(false);
+  Sync(U_->values());
+  Sync(p_->values());
   // Flux from the initial velocity (boundary values from the conditions).
   U_->CorrectBoundary(time_, {});
   const int ni = mesh_.n_internal_faces();
@@ -149,6 +167,7 @@ void PimpleSolver::AssembleMomentum(double dt, std::span<const double> flux_rel)
   UEqn_.Reset();
   AddDdt(UEqn_, *U_, dt, schemes_.time);
   grad_.Compute(std::span<const Vector3>(U_->values()), std::span<const Vector3>(U_->boundary()), grad_U_);
+  Sync(grad_U_);
   AddConvection(UEqn_, *U_, flux_rel, schemes_.convection, grad_U_);
   // div(dev(R_eff)): the turbulence model's, or the laminar one.
   if (turbulence_) {
@@ -191,6 +210,7 @@ double PimpleSolver::SolveMomentum(const std::vector<Vector3>& grad_p, StepSumma
     if (!std::isfinite(s.initial_residual)) worst = s.initial_residual;
     for (int c = 0; c < mesh_.n_cells(); ++c) (*U_)[c][k] = x[c];
   }
+  Sync(U_->values());
   return worst;
 }
 
@@ -205,6 +225,9 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
   for (int c = 0; c < nc; ++c) rAU[c] = 1.0 / A[c];
   std::vector<Vector3> HbyA = UEqn_.H(std::span<const Vector3>(U_->values()));
   for (int c = 0; c < nc; ++c) HbyA[c] *= rAU[c];
+  // The ghost rows of A and H lack the faces beyond the halo.
+  Sync(rAU);
+  Sync(HbyA);
 
   const bool backward = schemes_.time == TimeScheme::kBackward && U_->n_old() >= 2 && phi_old_.size() >= 2;
   std::vector<double> rAUf, phi_HbyA;
@@ -231,6 +254,7 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
     p_->bc(p).CorrectAfterFlux(ctx, phi_);
   }
   grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
+  Sync(grad_p_);
   for (int c = 0; c < nc; ++c) {
     (*U_)[c] = HbyA[c] - rAU[c] * grad_p_[c];
     for (int k = 0; k < 3; ++k) {
@@ -266,6 +290,7 @@ void PimpleSolver::FluxHbyA(double dt, bool backward, double alpha_U, const std:
   const bool skew = schemes_.skew_correction;
   if (skew) {
     grad_.Compute(std::span<const Vector3>(HbyA), std::span<const Vector3>(HbyA_boundary), grad_HbyA_);
+    Sync(grad_HbyA_);
   }
   const std::vector<Vector3>& skew_vec = skew_;
   // Face interpolation, skew-corrected with the gradient g when asked.
@@ -313,6 +338,7 @@ void PimpleSolver::SolvePressure(std::span<const double> rAUf, std::span<const d
     const bool last_non_orth = non_orth == pimple_.n_non_orthogonal;
     if (non_orth_correction_) {
       grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
+      Sync(grad_p_);
       NonOrthogonalFlux(mesh_, rAUf, grad_p_, non_orth_, face_corr);
       for (int f = 0; f < ni; ++f) known_flux[f] = phi_HbyA[f] - face_corr[f];
     }
@@ -324,12 +350,13 @@ void PimpleSolver::SolvePressure(std::span<const double> rAUf, std::span<const d
     AddLaplacian(pEqn_, *p_, rAUf, non_orth_, nullptr);
     AddDivergence(pEqn_, known);
     pEqn_.ComponentSystem(0, diag, rhs);
-    if (needs_reference) SetReference(diag, rhs, pimple_.p_ref_cell, pimple_.p_ref_value);
+    if (needs_reference && ReferenceCell() >= 0) SetReference(diag, rhs, ReferenceCell(), pimple_.p_ref_value);
     system_.Fill(diag, pEqn_.upper, pEqn_.lower);
     const bool final_solve = final_corrector && last_non_orth;
     pressure_solver_->SetRelativeTolerance(final_solve ? pimple_.pressure_final_relative_tolerance
                                                        : pimple_.pressure_solver.relative_tolerance);
     const SolverSummary s = pressure_solver_->Solve(system_.matrix(), rhs, p_->values());
+    Sync(p_->values());
     summary.pressure_iterations += s.iterations;
     if (first_pressure_solve && non_orth == 0) summary.initial_residual_p = s.initial_residual;
     if (!std::isfinite(s.final_relative_residual)) summary.finite = false;
@@ -356,12 +383,22 @@ double PimpleSolver::ContinuityError(double* global) const {
     }
   }
   double worst = 0.0, scale = 0.0;
-  for (int c = 0; c < nc; ++c) scale = std::max(scale, abs_sum[c]);
-  for (int c = 0; c < nc; ++c) worst = std::max(worst, std::abs(sum[c]));
+  const int owned = OwnedCells();
+  for (int c = 0; c < owned; ++c) scale = std::max(scale, abs_sum[c]);
+  for (int c = 0; c < owned; ++c) worst = std::max(worst, std::abs(sum[c]));
   double boundary = 0.0, boundary_abs = 0.0;
-  for (int f = ni; f < mesh_.n_faces(); ++f) {
-    boundary += phi_[f];
-    boundary_abs += std::abs(phi_[f]);
+  for (const Patch& patch : mesh_.patches()) {
+    if (patch.kind == PatchKind::kProcessor) continue;  // the ghost cells' faces
+    for (int f = patch.start; f < patch.start + patch.size; ++f) {
+      boundary += phi_[f];
+      boundary_abs += std::abs(phi_[f]);
+    }
+  }
+  if (Parallel()) {
+    scale = part_->Max(scale);
+    worst = part_->Max(worst);
+    boundary = part_->Sum(boundary);
+    boundary_abs = part_->Sum(boundary_abs);
   }
   if (global) *global = boundary_abs > 0 ? std::abs(boundary) / boundary_abs : std::abs(boundary);
   return scale > 0 ? worst / scale : worst;
@@ -400,6 +437,7 @@ StepSummary PimpleSolver::Step(double dt) {
     double res_U = 0.0;
     if (pimple_.momentum_predictor) {
       grad_.Compute(std::span<const double>(p_->values()), std::span<const double>(p_->boundary()), grad_p_);
+      Sync(grad_p_);
       res_U = SolveMomentum(grad_p_, summary);
       U_->CorrectBoundary(time_, flux_rel);
     }
@@ -433,6 +471,17 @@ StepSummary PimpleSolver::Step(double dt) {
     }
   }
   // Courant number and conservation.
+  Courant(dt, summary);
+  summary.continuity_error = ContinuityError(&summary.global_mass_imbalance);
+  for (int c = 0; c < OwnedCells() && summary.finite; ++c) {
+    if (!std::isfinite((*U_)[c].squaredNorm()) || !std::isfinite((*p_)[c])) summary.finite = false;
+  }
+  if (!std::isfinite(summary.initial_residual_p) || !std::isfinite(summary.initial_residual_U)) summary.finite = false;
+  if (Parallel()) summary.finite = part_->All(summary.finite);
+  return summary;
+}
+
+void PimpleSolver::Courant(double dt, StepSummary& summary) const {
   const auto vol = mesh_.cell_volumes();
   std::vector<double> sum_abs(mesh_.n_cells(), 0.0);
   for (int f = 0; f < mesh_.n_faces(); ++f) {
@@ -440,19 +489,24 @@ StepSummary PimpleSolver::Step(double dt) {
     if (f < mesh_.n_internal_faces()) sum_abs[mesh_.neighbour()[f]] += std::abs(phi_[f] - mesh_flux_[f]);
   }
   summary.courant_cell = mesh_.n_cells() > 0 ? 0 : -1;
-  for (int c = 0; c < mesh_.n_cells(); ++c) {
+  for (int c = 0; c < OwnedCells(); ++c) {
     const double co = 0.5 * dt * sum_abs[c] / vol[c];
     if (co > summary.courant_max) {  // false for NaN: non-finite cells are caught below
       summary.courant_max = co;
       summary.courant_cell = c;
     }
   }
-  summary.continuity_error = ContinuityError(&summary.global_mass_imbalance);
-  for (int c = 0; c < mesh_.n_cells() && summary.finite; ++c) {
-    if (!std::isfinite((*U_)[c].squaredNorm()) || !std::isfinite((*p_)[c])) summary.finite = false;
-  }
-  if (!std::isfinite(summary.initial_residual_p) || !std::isfinite(summary.initial_residual_U)) summary.finite = false;
-  return summary;
+  if (!Parallel()) return;
+  // The largest over the ranks, with its cell of the undecomposed mesh.
+  struct {
+    double value;
+    int rank;
+  } local{summary.courant_max, part_->rank}, global{};
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, part_->comm);
+  long long cell = part_->cells[summary.courant_cell];
+  MPI_Bcast(&cell, 1, MPI_LONG_LONG, global.rank, part_->comm);
+  summary.courant_max = global.value;
+  summary.courant_cell = static_cast<int>(cell);
 }
 
 PimpleSolver::State PimpleSolver::GetState() const {

@@ -22,6 +22,7 @@
 #include "cfd/fv/gradient.h"
 #include "cfd/fv/schemes.h"
 #include "cfd/linalg/linear_solver.h"
+#include "cfd/parallel/domain_part.h"
 #include "cfd/turbulence/turbulence_model.h"
 
 namespace kelvin::cfd {
@@ -84,8 +85,17 @@ struct StepSummary {
 
 class PimpleSolver {
  public:
+  // On a decomposed mesh `mesh` is the rank's local mesh and `part` its
+  // DomainPart (docs/formulation.md section 13): the steps are the serial
+  // ones on the owned cells, with the ghost cells refreshed after every
+  // update of a cell array that faces read, and the reductions (Courant
+  // number, continuity, residuals) global. p_ref_cell is then a cell of the
+  // undecomposed mesh. The fields' values must be current on the ghosts at
+  // the first step. Not yet on ranks: turbulence models and conditions with
+  // their own unknowns (the linearized free surface).
   PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptions schemes, PimpleOptions pimple,
-               std::unique_ptr<VectorField> U, std::unique_ptr<ScalarField> p);
+               std::unique_ptr<VectorField> U, std::unique_ptr<ScalarField> p,
+               std::shared_ptr<const DomainPart> part = nullptr);
 
   // Advances one time step of size dt (s).
   StepSummary Step(double dt);
@@ -136,6 +146,8 @@ class PimpleSolver {
   // vectors, non-orthogonal and skewness corrections) after the mesh moved.
   void RefreshGeometry();
   const PimpleOptions& options() const { return pimple_; }
+  // The rank's part of a decomposed mesh (null: serial).
+  const DomainPart* part() const { return part_.get(); }
 
   // Full state for checkpoints: continuing from a restored state gives the
   // same results bit for bit.
@@ -176,8 +188,20 @@ class PimpleSolver {
   // F - F_mesh on every face (refreshed on each call).
   std::span<const double> RelativeFlux();
   double ContinuityError(double* global) const;
+  // Courant number max and its cell (a cell of the undecomposed mesh on ranks).
+  void Courant(double dt, StepSummary& summary) const;
+  // Ghost refresh of a cell array (nothing when serial).
+  template <typename T>
+  void Sync(std::vector<T>& values) const {
+    UpdateGhosts(part_.get(), values);
+  }
+  bool Parallel() const { return part_ && part_->parallel(); }
+  int OwnedCells() const { return cfd::OwnedCells(part_.get(), mesh_); }
+  // The local reference cell of the pressure level, -1 when another rank owns it.
+  int ReferenceCell() const;
 
   const Mesh& mesh_;
+  std::shared_ptr<const DomainPart> part_;
   PhysicsOptions physics_;
   SchemeOptions schemes_;
   PimpleOptions pimple_;

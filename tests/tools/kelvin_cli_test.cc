@@ -48,6 +48,22 @@ TEST(KelvinCliTest, HelpForUnknownCommandExitsTwo) {
   EXPECT_THAT(r.output, HasSubstr("unknown command 'frobnicate'"));
 }
 
+// Under an MPI launcher every rank would run the whole case and write the
+// same files: one clear error instead (issue 23, until the commands decompose).
+TEST(KelvinCliTest, MpiLauncherIsRefusedWithOneLine) {
+  const std::string cavity = (kelvin::testing::SourceDir() / "data/cases/cavity_re100.yaml").string();
+  for (const char* env : {"OMPI_COMM_WORLD_SIZE=2", "PMI_SIZE=4"}) {
+    const auto r = RunCommand(std::string("env ") + env + " " + Kelvin() + " run " + cavity);
+    EXPECT_EQ(r.exit_code, 2) << env;
+    EXPECT_EQ(CountLines(r.output), 1) << r.output;
+    EXPECT_THAT(r.output, HasSubstr("started by an MPI launcher on"));
+    EXPECT_THAT(r.output, HasSubstr("expected one process"));
+  }
+  // A launcher's single rank is a serial run.
+  const auto one = RunCommand("env OMPI_COMM_WORLD_SIZE=1 " + Kelvin() + " --version");
+  EXPECT_EQ(one.exit_code, 0) << one.output;
+}
+
 TEST(KelvinCliTest, HelpListsCommands) {
   const auto r = RunCommand(Kelvin() + " help");
   EXPECT_EQ(r.exit_code, 0);

@@ -12,7 +12,9 @@ and YAML readers, 1 million for the others. Each target's count must be
 reached by ONE libFuzzer invocation; the script never adds runs together.
 
 The campaign may span several sessions. Every finished target run is stored
-in <work>/results.json (next to the corpora, written atomically) with its
+in results/fuzz/campaign.json of this repository (written atomically, committed
+with the BENCHMARKS section it renders, so a build directory lost between
+sessions loses no measurement) with its
 date, the commit of HEAD and of the target's reader sources, and a digest of
 those sources; the BENCHMARKS section is rendered from every stored result,
 so each row may come from a different session. The reader sources of a target
@@ -353,7 +355,7 @@ def section(stored, targets, build, current, notes):
         "## fuzz: the readers under libFuzzer (issue 24)\n",
         f"One campaign run in several sessions ({dates[0]} to {dates[-1]}) with "
         f"`tools/bench/fuzz_campaign.py --build {build}` (results stored in "
-        "`<build>/fuzz/campaign/results.json`, this section rendered from them): each row is ONE libFuzzer "
+        "`results/fuzz/campaign.json`, this section rendered from them): each row is ONE libFuzzer "
         "invocation of its target, started from the corpus the earlier sessions left, not a sum of runs; rows "
         "of different dates come from separate runs of the campaign on the commit shown (the last commit of "
         "the target's reader sources, * when they had local edits at the run). clang 14, -O1, "
@@ -393,8 +395,8 @@ def main():
     ap.add_argument("--targets", nargs="*", help="default: every target of the build (fuzz/targets.txt)")
     ap.add_argument("--budget", type=float, default=0, help="total seconds; 0: each target runs to its count")
     ap.add_argument("--parallel", type=int, default=1, help="targets at a time (one core each)")
-    ap.add_argument("--work", help="corpora, crashes, logs and results.json (default <build>/fuzz/campaign)")
-    ap.add_argument("--results", help="the stored results (default <work>/results.json)")
+    ap.add_argument("--work", help="corpora, crashes and logs (default <build>/fuzz/campaign)")
+    ap.add_argument("--results", help="the stored results (default results/fuzz/campaign.json in the repository)")
     ap.add_argument("--skip-reached", action="store_true",
                     help="run only targets without a stored run that reached its count on the current reader sources")
     ap.add_argument("--fastest-first", action="store_true",
@@ -408,7 +410,7 @@ def main():
     if args.parallel < 1:
         ap.error(f"--parallel {args.parallel}: expected at least 1")
     work = args.work or os.path.join(args.build, "fuzz", "campaign")
-    results_path = args.results or os.path.join(work, "results.json")
+    results_path = args.results or os.path.join(SOURCE, "results", "fuzz", "campaign.json")
     all_targets = open(os.path.join(args.build, "fuzz", "targets.txt")).read().split()
     targets = args.targets or all_targets
     until = None

@@ -1,0 +1,78 @@
+// A rank's part of a decomposed mesh, as the solver sees it (docs/formulation.md
+// section 13). The local mesh holds the rank's own cells first, [0, n_owned),
+// then one layer of ghost cells: copies of the face neighbours that other
+// ranks own. Every face of an owned cell is a face of the local mesh, so the
+// face loops of the serial solver compute the fluxes of the owned cells
+// unchanged once the ghost values are current; what lands in the ghost cells'
+// rows is discarded and overwritten by the halo exchange. The ghost cells
+// keep their other faces on the "processor" patch (PatchKind::kProcessor),
+// so their geometry is exact.
+//
+// The linear systems number the cells by rank: rank r's owned cells are the
+// rows [first_row, first_row + n_owned) of the global matrix.
+//
+// A serial run has no DomainPart (the solver's pointer is null) or one with
+// size 1; nothing below then communicates.
+#pragma once
+
+#include <mpi.h>
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "cfd/fv/gradient.h"
+#include "cfd/mesh/mesh.h"
+
+namespace kelvin::cfd {
+
+// Overwrites the ghost entries [n_owned, n_local) of a cell array with the
+// values their owning ranks hold (collective over the part's communicator).
+class HaloExchange {
+ public:
+  virtual ~HaloExchange() = default;
+  virtual void Update(std::span<double> values) const = 0;
+  virtual void Update(std::span<Vector3> values) const = 0;
+  virtual void Update(std::span<Matrix3> values) const = 0;
+};
+
+struct DomainPart {
+  MPI_Comm comm = MPI_COMM_SELF;
+  int rank = 0;
+  int size = 1;
+  int n_owned = 0;
+  long long n_global_cells = 0;
+  int first_row = 0;
+  // Global row of every local cell (owned and ghost).
+  std::vector<int> rows;
+  // Index in the undecomposed mesh of every local cell.
+  std::vector<long long> cells;
+  std::shared_ptr<const HaloExchange> halo;
+
+  bool parallel() const { return size > 1; }
+  // Collective reductions over the ranks (the value itself when serial).
+  double Sum(double local) const;
+  double Max(double local) const;
+  double Min(double local) const;
+  bool All(bool local) const;
+  // Local index of cell `global` of the undecomposed mesh when this rank owns
+  // it, else -1.
+  int OwnedCell(long long global) const;
+};
+
+// Ghost update through `part` when it is parallel; nothing otherwise.
+template <typename T>
+void UpdateGhosts(const DomainPart* part, std::span<T> values) {
+  if (part && part->parallel()) part->halo->Update(values);
+}
+template <typename T>
+void UpdateGhosts(const DomainPart* part, std::vector<T>& values) {
+  UpdateGhosts(part, std::span<T>(values));
+}
+
+// Cells whose rows this rank solves: n_owned of a parallel part, else all.
+inline int OwnedCells(const DomainPart* part, const Mesh& mesh) {
+  return part && part->parallel() ? part->n_owned : mesh.n_cells();
+}
+
+}  // namespace kelvin::cfd

@@ -1,0 +1,180 @@
+// The solver on MPI ranks (issue 23; run by ctest under mpiexec on 2 and 4
+// ranks): the decomposition's local meshes and halo, and the lid-driven
+// cavity with the linear solvers' tolerances at 1e-10, whose lid force must
+// agree with the serial run's within 1e-8 relative at every step.
+#include <gtest/gtest.h>
+
+#include <mpi.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "cfd/linalg/hypre_solver.h"
+#include "cfd/mesh/box_mesh.h"
+#include "cfd/parallel/decompose.h"
+#include "cfd/parallel/partition.h"
+#include "tests/cfd/cfd_test_support.h"
+
+namespace kelvin::cfd {
+namespace {
+
+int WorldSize() {
+  EnsureMpi();
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
+// Skewed polyhedral cells with split faces: every face kind the solver meets.
+Mesh PolyhedralBox() {
+  BoxMeshOptions o;
+  o.cells = {6, 6, 6};
+  o.polyhedral = true;
+  o.perturbation = 0.15;
+  return MakeBoxMesh(o);
+}
+
+LocalDomain DecomposeOverWorld(const Mesh& mesh) {
+  const std::vector<int> rank = PartitionCells(mesh, WorldSize(), MPI_COMM_WORLD);
+  return Decompose(mesh, rank, MPI_COMM_WORLD);
+}
+
+TEST(Decompose, OwnedCellsKeepTheirGeometry) {
+  const Mesh whole = PolyhedralBox();
+  const LocalDomain local = DecomposeOverWorld(whole);
+  const DomainPart& part = *local.part;
+  ASSERT_EQ(part.size, WorldSize());
+  double volume = 0.0;
+  for (int i = 0; i < local.mesh->n_cells(); ++i) {
+    const long long c = part.cells[i];
+    // Ghost cells too: their outer faces on the processor patch close them.
+    EXPECT_NEAR(local.mesh->cell_volumes()[i], whole.cell_volumes()[c], 1e-12 * whole.cell_volumes()[c]);
+    EXPECT_LT((local.mesh->cell_centres()[i] - whole.cell_centres()[c]).norm(), 1e-12);
+    if (i < part.n_owned) volume += local.mesh->cell_volumes()[i];
+  }
+  EXPECT_NEAR(part.Sum(volume), whole.total_volume(), 1e-12 * whole.total_volume());
+  EXPECT_EQ(static_cast<long long>(part.Sum(part.n_owned)), whole.n_cells());
+  // The real patches hold the owned cells' boundary faces only: their areas add up to the whole's.
+  for (std::size_t p = 0; p < whole.patches().size(); ++p) {
+    double area = 0.0, whole_area = 0.0;
+    const Patch& lp = local.mesh->patches()[p];
+    for (int f = lp.start; f < lp.start + lp.size; ++f) area += local.mesh->face_area_magnitudes()[f];
+    const Patch& wp = whole.patches()[p];
+    for (int f = wp.start; f < wp.start + wp.size; ++f) whole_area += whole.face_area_magnitudes()[f];
+    EXPECT_EQ(lp.name, wp.name);
+    EXPECT_NEAR(part.Sum(area), whole_area, 1e-12 * whole_area) << lp.name;
+  }
+  EXPECT_EQ(local.mesh->patches().back().kind, PatchKind::kProcessor);
+}
+
+TEST(Decompose, HaloCarriesTheOwnersValues) {
+  const Mesh whole = PolyhedralBox();
+  const LocalDomain local = DecomposeOverWorld(whole);
+  const DomainPart& part = *local.part;
+  const int n = local.mesh->n_cells();
+  std::vector<double> s(n, -1.0);
+  std::vector<Vector3> v(n, Vector3::Constant(-1.0));
+  std::vector<Matrix3> m(n, Matrix3::Constant(-1.0));
+  for (int i = 0; i < part.n_owned; ++i) {
+    const double g = static_cast<double>(part.cells[i]);
+    s[i] = g;
+    v[i] = Vector3(g, 2 * g, 3 * g);
+    m[i] = g * Matrix3::Identity() + Matrix3::Ones();
+  }
+  part.halo->Update(std::span<double>(s));
+  part.halo->Update(std::span<Vector3>(v));
+  part.halo->Update(std::span<Matrix3>(m));
+  for (int i = part.n_owned; i < n; ++i) {
+    const double g = static_cast<double>(part.cells[i]);
+    EXPECT_EQ(s[i], g);
+    EXPECT_EQ(v[i], Vector3(g, 2 * g, 3 * g));
+    EXPECT_EQ(m[i], g * Matrix3::Identity() + Matrix3::Ones());
+  }
+  if (part.size > 1) {
+    EXPECT_GT(n, part.n_owned) << "a rank of a split mesh has ghost cells";
+  }
+  // Global rows: each rank's owned cells are contiguous, and a ghost's row is its owner's.
+  std::vector<double> rows(n);
+  for (int i = 0; i < n; ++i) rows[i] = part.rows[i];
+  for (int i = 0; i < part.n_owned; ++i) EXPECT_EQ(part.rows[i], part.first_row + i);
+  part.halo->Update(std::span<double>(rows));
+  for (int i = part.n_owned; i < n; ++i) EXPECT_EQ(rows[i], part.rows[i]);
+}
+
+// The lid-driven cavity at Re 100 on 24 x 24 cells; `part` null runs it serially on the whole mesh.
+struct CavityRun {
+  std::vector<double> lid_force;  // viscous x-force on the lid per unit density, every step
+  std::vector<double> u;          // U_x of the owned cells at the end, in the whole mesh's order
+};
+
+CavityRun RunCavity(const Mesh& mesh, std::shared_ptr<const DomainPart> part, int steps) {
+  auto U = testing::MakeField<Vector3>("U", mesh, [](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
+    if (p.kind == PatchKind::kEmpty) return std::make_unique<Empty<Vector3>>();
+    if (p.kind == PatchKind::kProcessor) return std::make_unique<ZeroGradient<Vector3>>();
+    if (p.name == "ymax") return std::make_unique<FixedValue<Vector3>>(Vector3(1, 0, 0));
+    return std::make_unique<FixedValue<Vector3>>(Vector3(0, 0, 0));
+  });
+  auto p = testing::MakeField<double>("p", mesh, [](const Patch&) -> std::unique_ptr<BoundaryCondition<double>> {
+    return std::make_unique<ZeroGradient<double>>();
+  });
+  PhysicsOptions physics;
+  physics.nu = 0.01;
+  SchemeOptions schemes;
+  schemes.convection = ConvectionScheme::kLinearUpwind;
+  PimpleOptions pimple;
+  pimple.n_correctors = 2;
+  pimple.momentum_solver.relative_tolerance = 1e-10;
+  pimple.pressure_solver.relative_tolerance = 1e-10;
+  pimple.pressure_final_relative_tolerance = 1e-10;
+  pimple.momentum_solver.absolute_tolerance = 0.0;
+  pimple.pressure_solver.absolute_tolerance = 0.0;
+  PimpleSolver solver(mesh, physics, schemes, pimple, std::move(U), std::move(p), part);
+  CavityRun run;
+  const int lid = mesh.FindPatch("ymax");
+  const Patch& patch = mesh.patches()[lid];
+  for (int s = 0; s < steps; ++s) {
+    const StepSummary summary = solver.Step(0.02);
+    EXPECT_TRUE(summary.finite);
+    double force = 0.0;
+    for (int f = patch.start; f < patch.start + patch.size; ++f) {
+      const int c = mesh.owner()[f];
+      const double dn = mesh.deltas()[f].dot(mesh.face_areas()[f]) / mesh.face_area_magnitudes()[f];
+      force += physics.nu * mesh.face_area_magnitudes()[f] * (1.0 - solver.U()[c].x()) / dn;
+    }
+    run.lid_force.push_back(part ? part->Sum(force) : force);
+  }
+  std::vector<double> ux(mesh.n_cells());
+  for (int c = 0; c < mesh.n_cells(); ++c) ux[c] = solver.U()[c].x();
+  run.u = part ? GatherCells(*part, ux) : ux;
+  return run;
+}
+
+TEST(ParallelPimple, CavityLidForceMatchesSerialAtEveryStep) {
+  BoxMeshOptions o;
+  o.cells = {24, 24, 1};
+  o.max = Vector3(1.0, 1.0, 1.0 / 24);
+  o.kinds[4] = o.kinds[5] = PatchKind::kEmpty;
+  const Mesh whole = MakeBoxMesh(o);
+  const int steps = 25;
+  const CavityRun serial = RunCavity(whole, nullptr, steps);
+  const LocalDomain local = DecomposeOverWorld(whole);
+  const CavityRun parallel = RunCavity(*local.mesh, local.part, steps);
+  ASSERT_EQ(parallel.lid_force.size(), serial.lid_force.size());
+  double worst = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    const double rel = std::abs(parallel.lid_force[s] - serial.lid_force[s]) / std::abs(serial.lid_force[s]);
+    worst = std::max(worst, rel);
+    EXPECT_LT(rel, 1e-8) << "step " << s + 1 << ": " << parallel.lid_force[s] << " on " << WorldSize()
+                         << " ranks against " << serial.lid_force[s] << " serially";
+  }
+  double du = 0.0;
+  for (std::size_t c = 0; c < serial.u.size(); ++c) du = std::max(du, std::abs(parallel.u[c] - serial.u[c]));
+  EXPECT_LT(du, 1e-8);
+  if (local.part->rank == 0) {
+    std::printf("%d ranks: lid force %.10f after %d steps, max relative difference %.2e, max |du| %.2e\n",
+                WorldSize(), parallel.lid_force.back(), steps, worst, du);
+  }
+}
+
+}  // namespace
+}  // namespace kelvin::cfd
