@@ -96,10 +96,10 @@ void PimpleSolver::SetCellSource(std::vector<Vector3> source) {
 }
 
 void PimpleSolver::SetTurbulence(std::unique_ptr<TurbulenceModel> model) {
-  if (model && Parallel()) {
-    throw ConfigError(fmt::format("turbulence: the RANS models do not run on {} ranks yet; expected a laminar case "
-                                  "or one rank",
-                                  part_->size));
+  if (model && Parallel() && model->part() != part_.get()) {
+    throw ConfigError(fmt::format("turbulence: the {} model was not built on this rank's part of the mesh; expected "
+                                  "the DomainPart the solver runs on",
+                                  model->name()));
   }
   turbulence_ = std::move(model);
   if (initialized_ && turbulence_) turbulence_->Initialize(*U_, RelativeFlux());
@@ -325,7 +325,8 @@ void PimpleSolver::SolvePressure(std::span<const double> rAUf, std::span<const d
                                  bool final_corrector, bool first_pressure_solve, StepSummary& summary) {
   const int ni = mesh_.n_internal_faces();
   // Without a boundary that fixes the level, the reference cell fixes it.
-  const bool needs_reference = NeedsReference(*p_);
+  // On ranks: only when no rank has a boundary face that fixes the level.
+  const bool needs_reference = Parallel() ? part_->All(NeedsReference(*p_)) : NeedsReference(*p_);
   auto& [face_corr, known_flux, diag, rhs, laplacian_flux] = pressure_scratch_;
   // The flux known before the solve: phiHbyA, less the non-orthogonal part
   // of the Laplacian on corrected meshes.
@@ -453,6 +454,7 @@ StepSummary PimpleSolver::Step(double dt) {
     if (outer_hook_) outer_hook_(outer);
     if (final_outer && turbulence_) {
       grad_.Compute(std::span<const Vector3>(U_->values()), std::span<const Vector3>(U_->boundary()), grad_U_);
+      Sync(grad_U_);
       turbulence_summary_ = turbulence_->Correct(TurbulenceInputs{*U_, grad_U_, RelativeFlux(), dt, time_});
       if (!std::isfinite(turbulence_summary_.initial_residual_k) ||
           !std::isfinite(turbulence_summary_.initial_residual_omega)) {

@@ -91,8 +91,9 @@ class PimpleSolver {
   // update of a cell array that faces read, and the reductions (Courant
   // number, continuity, residuals) global. p_ref_cell is then a cell of the
   // undecomposed mesh. The fields' values must be current on the ghosts at
-  // the first step. Not yet on ranks: turbulence models and conditions with
-  // their own unknowns (the linearized free surface).
+  // the first step. A turbulence model must be built on the same part
+  // (KOmegaSst's `part`). Not yet on ranks: conditions with their own
+  // unknowns (the linearized free surface).
   PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptions schemes, PimpleOptions pimple,
                std::unique_ptr<VectorField> U, std::unique_ptr<ScalarField> p,
                std::shared_ptr<const DomainPart> part = nullptr);

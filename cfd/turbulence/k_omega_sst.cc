@@ -47,8 +47,10 @@ double Blend(double F1, double inner, double outer) { return F1 * inner + (1.0 -
 
 }  // namespace
 
-KOmegaSst::KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std::vector<TurbulencePatchRole> roles)
+KOmegaSst::KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std::vector<TurbulencePatchRole> roles,
+                     std::shared_ptr<const DomainPart> part)
     : mesh_(mesh),
+      part_(std::move(part)),
       nu_(nu),
       opt_(std::move(options)),
       roles_(std::move(roles)),
@@ -91,7 +93,7 @@ KOmegaSst::KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std:
   // Floors for the bound check: far below any physical value of the run.
   k_floor_ = 1e-14 * k_in;
   omega_floor_ = 1e-14 * w_in;
-  y_ = WallDistance(mesh, walls);
+  y_ = WallDistance(mesh, walls, part_.get());
   const int nc = mesh.n_cells();
   nut_.assign(nc, k_in / w_in);
   F1_.assign(nc, 1.0);
@@ -178,6 +180,7 @@ void KOmegaSst::UpdateViscosity() {
     const double k = (*k_)[c], w = (*omega_)[c];
     nut_[c] = opt_.a1 * k / std::max(opt_.a1 * w, strain[c] * F2_[c]);
   }
+  Sync(nut_);  // a ghost that is a wall cell of its owner takes the owner's limiter
   UpdateFaceViscosity();
 }
 
@@ -207,7 +210,11 @@ double KOmegaSst::Solve(ScalarField& field, FvMatrix<double>& m, int& bounded, d
   const Eigen::Map<const Eigen::VectorXd> x(field.values().data(), static_cast<Eigen::Index>(field.values().size()));
   const Eigen::Map<const Eigen::VectorXd> b(source.data(), static_cast<Eigen::Index>(source.size()));
   const Eigen::VectorXd r0 = b - a * x;
-  const double residual = NormalizedResidual(a, source, field.values());
+  const double residual = NormalizedResidual(a, source, field.values(), part_.get());
+  // Every rank must take the same branch below (the solve is collective);
+  // the ghost rows of r0 are not equations.
+  const int owned = OwnedCells(part_.get(), mesh_);
+  const double r0_norm = part_ ? part_->Sum(r0.head(owned).squaredNorm()) : r0.squaredNorm();
   // BiCGStab with an ILU(0) preconditioner (hypre) on the correction, same
   // tolerances as opt_.solver. The k and omega matrices are dominated by
   // upwind convection at the large pseudo-time steps of steady runs; there
@@ -217,15 +224,16 @@ double KOmegaSst::Solve(ScalarField& field, FvMatrix<double>& m, int& bounded, d
   if (!solver) {
     LinearSolverOptions o = opt_.solver;
     o.type = LinearSolverOptions::Type::kBiCgStabIlu;
-    solver = LinearSolver::Create(o);
+    solver = LinearSolver::Create(o, part_.get());
   }
   std::vector<double> dx(r0.size(), 0.0);
-  if (r0.norm() > 0.0) {
+  if (r0_norm > 0.0) {
     const SolverSummary s = solver->Solve(a, std::span<const double>(r0.data(), r0.size()), dx);
     iterations += s.iterations;
   }
   for (std::size_t c = 0; c < dx.size(); ++c) field.values()[c] += dx[c];
-  for (double& v : field.values()) {
+  for (int c = 0; c < owned; ++c) {
+    double& v = field.values()[c];
     if (!(v >= floor)) {
       if (std::isfinite(v)) {
         v = floor;
@@ -233,6 +241,7 @@ double KOmegaSst::Solve(ScalarField& field, FvMatrix<double>& m, int& bounded, d
       }
     }
   }
+  Sync(field.values());
   return residual;
 }
 
@@ -257,6 +266,8 @@ TurbulenceSummary KOmegaSst::Correct(const TurbulenceInputs& in) {
   std::vector<Vector3> gk, gw;
   grad_.Compute(std::span<const double>(k_->values()), std::span<const double>(k_->boundary()), gk);
   grad_.Compute(std::span<const double>(omega_->values()), std::span<const double>(omega_->boundary()), gw);
+  Sync(gk);
+  Sync(gw);
   std::vector<double> cross(nc);  // 2 sigma_w2 grad k . grad omega / omega
   for (int c = 0; c < nc; ++c) {
     const double k = (*k_)[c], om = (*omega_)[c], y = y_[c];
@@ -348,6 +359,10 @@ TurbulenceSummary KOmegaSst::Correct(const TurbulenceInputs& in) {
     F2_[c] = std::tanh(arg2 * arg2);
   }
   UpdateViscosity();
+  if (part_) {
+    summary.bounded_k = static_cast<int>(part_->Sum(summary.bounded_k));
+    summary.bounded_omega = static_cast<int>(part_->Sum(summary.bounded_omega));
+  }
   return summary;
 }
 

@@ -92,10 +92,15 @@ struct KOmegaSstOptions {
 
 class KOmegaSst : public TurbulenceModel {
  public:
-  // `roles` has one entry per mesh patch. nu in m^2/s.
-  KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std::vector<TurbulencePatchRole> roles);
+  // `roles` has one entry per mesh patch. nu in m^2/s. On a decomposed mesh
+  // `part` is the rank's DomainPart (docs/formulation.md section 13): the
+  // ghost values of k, omega, nu_t, their gradients and the wall distance
+  // are refreshed from their owners, and the solves run on the global rows.
+  KOmegaSst(const Mesh& mesh, double nu, KOmegaSstOptions options, std::vector<TurbulencePatchRole> roles,
+            std::shared_ptr<const DomainPart> part = nullptr);
 
   std::string name() const override { return "kOmegaSST"; }
+  const DomainPart* part() const override { return part_.get(); }
   void Initialize(const VectorField& U, std::span<const double> flux) override;
   TurbulenceSummary Correct(const TurbulenceInputs& in) override;
   void RefreshGeometry() override {
@@ -129,7 +134,13 @@ class KOmegaSst : public TurbulenceModel {
   // Solves one transport equation; returns the initial residual.
   double Solve(ScalarField& field, FvMatrix<double>& m, int& bounded, double floor, int& iterations);
 
+  template <typename T>
+  void Sync(std::vector<T>& values) const {
+    UpdateGhosts(part_.get(), values);
+  }
+
   const Mesh& mesh_;
+  std::shared_ptr<const DomainPart> part_;
   double nu_;
   KOmegaSstOptions opt_;
   std::vector<TurbulencePatchRole> roles_;

@@ -16,6 +16,7 @@
 #include "cfd/field/field.h"
 #include "cfd/fv/fv_matrix.h"
 #include "cfd/fv/gradient.h"
+#include "cfd/parallel/domain_part.h"
 #include "cfd/turbulence/wall_stats.h"
 
 namespace kelvin::cfd {
@@ -56,7 +57,11 @@ inline TurbulencePatchRole TurbulencePatchRoleOf(const BoundaryCondition<Vector3
 inline std::vector<TurbulencePatchRole> TurbulencePatchRoles(const VectorField& U, const ScalarField& p) {
   KELVIN_CHECK(U.n_patches() == p.n_patches(), "U and p on the same patches");
   std::vector<TurbulencePatchRole> roles;
-  for (int k = 0; k < U.n_patches(); ++k) roles.push_back(TurbulencePatchRoleOf(U.bc(k), p.bc(k)));
+  for (int k = 0; k < U.n_patches(); ++k) {
+    // The ghost cells' outer faces of a decomposed mesh: values overwritten by the halo.
+    const bool processor = U.mesh().patches()[k].kind == PatchKind::kProcessor;
+    roles.push_back(processor ? TurbulencePatchRole::kSymmetry : TurbulencePatchRoleOf(U.bc(k), p.bc(k)));
+  }
   return roles;
 }
 
@@ -89,6 +94,8 @@ class TurbulenceModel {
  public:
   virtual ~TurbulenceModel() = default;
   virtual std::string name() const = 0;
+  // The decomposition the model was built on (null: serial).
+  virtual const DomainPart* part() const { return nullptr; }
   // Computes nu_t and the wall quantities from the initial fields.
   virtual void Initialize(const VectorField& U, std::span<const double> flux) = 0;
   virtual TurbulenceSummary Correct(const TurbulenceInputs& in) = 0;

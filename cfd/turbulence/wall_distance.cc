@@ -12,7 +12,7 @@
 
 namespace kelvin::cfd {
 
-std::vector<double> WallDistance(const Mesh& mesh, const std::vector<int>& wall_patches) {
+std::vector<double> WallDistance(const Mesh& mesh, const std::vector<int>& wall_patches, const DomainPart* part) {
   if (wall_patches.empty()) throw ConfigError("wall distance: no wall patch (the turbulence model needs one)");
   std::vector<bool> is_wall(mesh.patches().size(), false);
   for (int p : wall_patches) {
@@ -37,7 +37,7 @@ std::vector<double> WallDistance(const Mesh& mesh, const std::vector<int>& wall_
   options.type = LinearSolverOptions::Type::kPcgAmg;
   options.relative_tolerance = 1e-8;
   options.amg.strong_threshold = 0.5;
-  auto solver = LinearSolver::Create(options);
+  auto solver = LinearSolver::Create(options, part);
   SparseSystem system(mesh);
   const std::vector<double> ones(mesh.n_cells(), 1.0);
   std::vector<double> diag, source;
@@ -46,15 +46,18 @@ std::vector<double> WallDistance(const Mesh& mesh, const std::vector<int>& wall_
   for (int pass = 0; pass < passes; ++pass) {
     phi.CorrectBoundary(0.0, {});
     grad.Compute(std::span<const double>(phi.values()), std::span<const double>(phi.boundary()), g);
+    UpdateGhosts(part, g);
     FvMatrix<double> m(mesh);
     AddLaplacian(m, phi, 1.0, geo, geo.any_correction ? &g : nullptr);
     AddSource(m, std::span<const double>(ones));
     m.ComponentSystem(0, diag, source);
     system.Fill(diag, m.upper, m.lower);
     solver->Solve(system.matrix(), source, phi.values());
+    UpdateGhosts(part, phi.values());
   }
   phi.CorrectBoundary(0.0, {});
   grad.Compute(std::span<const double>(phi.values()), std::span<const double>(phi.boundary()), g);
+  UpdateGhosts(part, g);
   std::vector<double> d(mesh.n_cells());
   for (int c = 0; c < mesh.n_cells(); ++c) {
     const double gn = g[c].norm();
@@ -74,6 +77,7 @@ std::vector<double> WallDistance(const Mesh& mesh, const std::vector<int>& wall_
     if (std::isfinite(exact[c])) d[c] = exact[c];
     d[c] = std::max(d[c], 1e-300);
   }
+  UpdateGhosts(part, d);  // a ghost next to its owner's wall
   return d;
 }
 

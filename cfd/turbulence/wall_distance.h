@@ -12,11 +12,14 @@
 #include <vector>
 
 #include "cfd/mesh/mesh.h"
+#include "cfd/parallel/domain_part.h"
 
 namespace kelvin::cfd {
 
-// `wall_patches` lists patch indices. Returns one distance per cell (m).
+// `wall_patches` lists patch indices. Returns one distance per cell (m),
+// ghost cells included on a decomposed mesh (`part`, null: serial).
 // Throws ConfigError when the list is empty.
-std::vector<double> WallDistance(const Mesh& mesh, const std::vector<int>& wall_patches);
+std::vector<double> WallDistance(const Mesh& mesh, const std::vector<int>& wall_patches,
+                                 const DomainPart* part = nullptr);
 
 }  // namespace kelvin::cfd

@@ -83,7 +83,7 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu) {
   PimpleSolver solver(mesh, physics, schemes, pimple, Field<Vector3>("U", mesh, true), Field<double>("p", mesh, false),
                       local.part);
   std::vector<double> step_s;
-  double p_iters = 0.0;
+  double p_iters = 0.0, u_iters = 0.0;
   for (int s = 0; s < steps; ++s) {
     MPI_Barrier(MPI_COMM_WORLD);
     const double a = MPI_Wtime();
@@ -91,6 +91,7 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu) {
     MPI_Barrier(MPI_COMM_WORLD);
     step_s.push_back(MPI_Wtime() - a);
     p_iters += summary.pressure_iterations;
+    u_iters += summary.momentum_iterations;
     if (!summary.finite) throw std::runtime_error("the cube diverged");
   }
   rusage usage{};
@@ -111,9 +112,9 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu) {
   const std::vector<double> ghost = Gathered(ghosts, MPI_COMM_WORLD);
   const std::vector<double> nbr = Gathered(static_cast<double>(neighbours.size()), MPI_COMM_WORLD);
   if (rank == 0) {
-    std::printf("{\"ranks\": %d, \"cells\": %lld, \"decompose_s\": %.4f, \"step_s\": %s, \"pressure_iterations\": %.0f, "
+    std::printf("{\"ranks\": %d, \"cells\": %lld, \"decompose_s\": %.4f, \"step_s\": %s, \"pressure_iterations\": %.0f, \"momentum_iterations\": %.0f, "
                 "\"rss_mb\": %s, \"owned\": %s, \"ghosts\": %s, \"neighbours\": %s}\n",
-                size, n_cells, decompose_s, List(step_s).c_str(), p_iters, List(rss).c_str(), List(own).c_str(),
+                size, n_cells, decompose_s, List(step_s).c_str(), p_iters, u_iters, List(rss).c_str(), List(own).c_str(),
                 List(ghost).c_str(), List(nbr).c_str());
   }
   return 0;
