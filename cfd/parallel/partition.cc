@@ -130,6 +130,9 @@ void PartitionOptions::Validate() const {
   if (!(imbalance > 0.0 && imbalance < 1.0)) {
     throw ConfigError(fmt::format("partition.imbalance = {}; expected in (0, 1)", imbalance));
   }
+  if (min_cells_per_rank < 1) {
+    throw ConfigError(fmt::format("partition.min_cells_per_rank = {}; expected at least 1", min_cells_per_rank));
+  }
 }
 
 int PrismColumns(const Mesh& mesh, double column_aspect, std::vector<int>& column) {
@@ -159,6 +162,14 @@ std::vector<int> PartitionCells(const Mesh& mesh, int n_parts, MPI_Comm comm, co
                                 PartitionSummary* summary) {
   options.Validate();
   if (n_parts < 1) throw ConfigError(fmt::format("{} parts; expected at least 1", n_parts));
+  if (n_parts > 1 && mesh.n_cells() < static_cast<long long>(n_parts) * options.min_cells_per_rank) {
+    throw ConfigError(fmt::format("{}: {} cells over {} ranks is {} per rank; expected at least {} cells per rank "
+                                  "(partition.min_cells_per_rank; with fewer the halo exchanges cost more than the "
+                                  "rank saves): run on at most {} ranks",
+                                  mesh.source(), mesh.n_cells(), n_parts, mesh.n_cells() / n_parts,
+                                  options.min_cells_per_rank,
+                                  std::max(1, mesh.n_cells() / options.min_cells_per_rank)));
+  }
   std::vector<int> column;
   const int n_columns = PrismColumns(mesh, options.column_aspect, column);
   if (n_columns < n_parts) {

@@ -22,6 +22,10 @@ struct PartitionOptions {
   double column_aspect = 5.0;
   // Allowed load imbalance of PT-Scotch (0.05 = 5%).
   double imbalance = 0.05;
+  // Fewer cells per rank are refused: below a few thousand the halo
+  // exchanges and reductions of every step cost more than the rank's share
+  // of the work saves (small test cases lower it).
+  int min_cells_per_rank = 2000;
   void Validate() const;
 };
 

@@ -37,7 +37,9 @@ Mesh PolyhedralBox() {
 }
 
 LocalDomain DecomposeOverWorld(const Mesh& mesh) {
-  const std::vector<int> rank = PartitionCells(mesh, WorldSize(), MPI_COMM_WORLD);
+  PartitionOptions options;
+  options.min_cells_per_rank = 1;  // test meshes of a few hundred cells
+  const std::vector<int> rank = PartitionCells(mesh, WorldSize(), MPI_COMM_WORLD, options);
   return Decompose(mesh, rank, MPI_COMM_WORLD);
 }
 

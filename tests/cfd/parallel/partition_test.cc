@@ -43,9 +43,16 @@ TEST(PrismColumns, ThinCellsFormColumnsAndIsotropicCellsStandAlone) {
   EXPECT_EQ(PrismColumns(uniform, 5.0, column), uniform.n_cells());
 }
 
+// The test meshes are small: no minimum of cells per rank.
+PartitionOptions SmallMeshes() {
+  PartitionOptions o;
+  o.min_cells_per_rank = 1;
+  return o;
+}
+
 TEST(PartitionCells, KeepsColumnsWholeAndBalancesTheParts) {
   const Mesh slab = LayeredSlab();
-  const PartitionOptions options;
+  const PartitionOptions options = SmallMeshes();
   for (int parts : {2, 4}) {
     PartitionSummary summary;
     const std::vector<int> part = PartitionCells(slab, parts, MPI_COMM_SELF, options, &summary);
@@ -74,12 +81,27 @@ TEST(PartitionCells, OnePartNeedsNoPartitioner) {
 TEST(PartitionCells, MorePartsThanColumnsIsRefusedByName) {
   const Mesh slab = LayeredSlab();
   try {
-    PartitionCells(slab, 17, MPI_COMM_SELF);
+    PartitionCells(slab, 17, MPI_COMM_SELF, SmallMeshes());
     FAIL() << "expected a ConfigError";
   } catch (const ConfigError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("640 cells in 16 prism columns"), std::string::npos) << what;
     EXPECT_NE(what.find("17 ranks"), std::string::npos) << what;
+  }
+}
+
+TEST(PartitionCells, TooFewCellsPerRankIsRefusedWithTheRankCountThatFits) {
+  const Mesh slab = LayeredSlab();  // 640 cells
+  PartitionOptions o;
+  o.min_cells_per_rank = 200;
+  EXPECT_NO_THROW(PartitionCells(slab, 3, MPI_COMM_SELF, o));
+  try {
+    PartitionCells(slab, 4, MPI_COMM_SELF, o);
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("640 cells over 4 ranks is 160 per rank; expected at least 200"), std::string::npos) << what;
+    EXPECT_NE(what.find("run on at most 3 ranks"), std::string::npos) << what;
   }
 }
 
@@ -89,6 +111,9 @@ TEST(PartitionOptions, BadValuesAreRefusedByName) {
   EXPECT_THROW(o.Validate(), ConfigError);
   o = {};
   o.imbalance = 0.0;
+  EXPECT_THROW(o.Validate(), ConfigError);
+  o = {};
+  o.min_cells_per_rank = 0;
   EXPECT_THROW(o.Validate(), ConfigError);
 }
 
