@@ -15,6 +15,8 @@ struct LocalFace {
   int owner = 0;
   int neighbour = -1;
   std::vector<int> points;  // global point labels
+  int global = 0;           // the face of the whole mesh
+  signed char sign = 1;     // -1: oriented against it
 };
 
 std::vector<int> Reversed(std::span<const int> pts) {
@@ -50,6 +52,7 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
   KELVIN_CHECK(static_cast<int>(cell_rank.size()) == nc, "one rank per cell");
   for (int r : cell_rank) KELVIN_CHECK(r >= 0 && r < part->size, "cell ranks in [0, size)");
   part->n_global_cells = nc;
+  part->n_global_faces = mesh.n_faces();
   const Ownership own = Owners(cell_rank, part->size);
 
   // Local cells: owned, then ghosts, each in ascending global order.
@@ -91,14 +94,14 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
     const auto pts = mesh.face(f);
     if (owned(lp) || owned(ln)) {
       if (lp < ln) {
-        internal.push_back({lp, ln, std::vector<int>(pts.begin(), pts.end())});
+        internal.push_back({lp, ln, std::vector<int>(pts.begin(), pts.end()), f, 1});
       } else {
-        internal.push_back({ln, lp, Reversed(pts)});
+        internal.push_back({ln, lp, Reversed(pts), f, -1});
       }
       continue;
     }
-    if (lp >= 0) processor.push_back({lp, -1, std::vector<int>(pts.begin(), pts.end())});
-    if (ln >= 0) processor.push_back({ln, -1, Reversed(pts)});
+    if (lp >= 0) processor.push_back({lp, -1, std::vector<int>(pts.begin(), pts.end()), f, 1});
+    if (ln >= 0) processor.push_back({ln, -1, Reversed(pts), f, -1});
   }
   for (std::size_t pi = 0; pi < mesh.patches().size(); ++pi) {
     const Patch& patch = mesh.patches()[pi];
@@ -106,7 +109,7 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
       const int lp = local_of[owner[f]];
       if (lp < 0) continue;
       const auto pts = mesh.face(f);
-      (owned(lp) ? patch_faces[pi] : processor).push_back({lp, -1, std::vector<int>(pts.begin(), pts.end())});
+      (owned(lp) ? patch_faces[pi] : processor).push_back({lp, -1, std::vector<int>(pts.begin(), pts.end()), f, 1});
     }
   }
   std::sort(internal.begin(), internal.end(), [](const LocalFace& a, const LocalFace& b) {
@@ -140,6 +143,8 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
       std::vector<int> pts(lf.points.size());
       for (std::size_t i = 0; i < pts.size(); ++i) pts[i] = point_of[lf.points[i]];
       faces.push_back(std::move(pts));
+      part->faces.push_back(lf.global);
+      part->face_signs.push_back(lf.sign);
       owners.push_back(lf.owner);
       if (lf.neighbour >= 0) neighbours.push_back(lf.neighbour);
     }

@@ -47,6 +47,12 @@ struct DomainPart {
   std::vector<int> rows;
   // Index in the undecomposed mesh of every local cell.
   std::vector<long long> cells;
+  // The face of the undecomposed mesh of every local face, and +1 or -1 as
+  // the local face is oriented along it or against it (owned-ghost faces
+  // point away from the owned cell).
+  long long n_global_faces = 0;
+  std::vector<long long> faces;
+  std::vector<signed char> face_signs;
   std::shared_ptr<const HaloExchange> halo;
 
   bool parallel() const { return size > 1; }

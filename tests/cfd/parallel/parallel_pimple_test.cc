@@ -14,6 +14,7 @@
 #include "cfd/mesh/box_mesh.h"
 #include "cfd/parallel/decompose.h"
 #include "cfd/parallel/partition.h"
+#include "cfd/parallel/state_layout.h"
 #include "cfd/turbulence/k_omega_sst.h"
 #include "tests/cfd/cfd_test_support.h"
 
@@ -111,7 +112,7 @@ struct CavityRun {
   std::vector<double> u;          // U_x of the owned cells at the end, in the whole mesh's order
 };
 
-CavityRun RunCavity(const Mesh& mesh, std::shared_ptr<const DomainPart> part, int steps) {
+std::unique_ptr<PimpleSolver> CavitySolver(const Mesh& mesh, std::shared_ptr<const DomainPart> part) {
   auto U = testing::MakeField<Vector3>("U", mesh, [](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
     if (p.kind == PatchKind::kEmpty) return std::make_unique<Empty<Vector3>>();
     if (p.kind == PatchKind::kProcessor) return std::make_unique<ZeroGradient<Vector3>>();
@@ -125,6 +126,7 @@ CavityRun RunCavity(const Mesh& mesh, std::shared_ptr<const DomainPart> part, in
   physics.nu = 0.01;
   SchemeOptions schemes;
   schemes.convection = ConvectionScheme::kLinearUpwind;
+  schemes.time = TimeScheme::kBackward;  // two old levels of U and the flux in the state
   PimpleOptions pimple;
   pimple.n_correctors = 2;
   pimple.momentum_solver.relative_tolerance = 1e-10;
@@ -132,33 +134,95 @@ CavityRun RunCavity(const Mesh& mesh, std::shared_ptr<const DomainPart> part, in
   pimple.pressure_final_relative_tolerance = 1e-10;
   pimple.momentum_solver.absolute_tolerance = 0.0;
   pimple.pressure_solver.absolute_tolerance = 0.0;
-  PimpleSolver solver(mesh, physics, schemes, pimple, std::move(U), std::move(p), part);
+  return std::make_unique<PimpleSolver>(mesh, physics, schemes, pimple, std::move(U), std::move(p), part);
+}
+
+// Viscous x-force on the lid per unit density, summed over the ranks.
+double LidForce(const PimpleSolver& solver, const DomainPart* part) {
+  const Mesh& mesh = solver.mesh();
+  const Patch& patch = mesh.patches()[mesh.FindPatch("ymax")];
+  double force = 0.0;
+  for (int f = patch.start; f < patch.start + patch.size; ++f) {
+    const int c = mesh.owner()[f];
+    const double dn = mesh.deltas()[f].dot(mesh.face_areas()[f]) / mesh.face_area_magnitudes()[f];
+    force += 0.01 * mesh.face_area_magnitudes()[f] * (1.0 - solver.U()[c].x()) / dn;
+  }
+  return part ? part->Sum(force) : force;
+}
+
+CavityRun RunCavity(const Mesh& mesh, std::shared_ptr<const DomainPart> part, int steps) {
+  auto solver = CavitySolver(mesh, part);
   CavityRun run;
-  const int lid = mesh.FindPatch("ymax");
-  const Patch& patch = mesh.patches()[lid];
   for (int s = 0; s < steps; ++s) {
-    const StepSummary summary = solver.Step(0.02);
-    EXPECT_TRUE(summary.finite);
-    double force = 0.0;
-    for (int f = patch.start; f < patch.start + patch.size; ++f) {
-      const int c = mesh.owner()[f];
-      const double dn = mesh.deltas()[f].dot(mesh.face_areas()[f]) / mesh.face_area_magnitudes()[f];
-      force += physics.nu * mesh.face_area_magnitudes()[f] * (1.0 - solver.U()[c].x()) / dn;
-    }
-    run.lid_force.push_back(part ? part->Sum(force) : force);
+    EXPECT_TRUE(solver->Step(0.02).finite);
+    run.lid_force.push_back(LidForce(*solver, part.get()));
   }
   std::vector<double> ux(mesh.n_cells());
-  for (int c = 0; c < mesh.n_cells(); ++c) ux[c] = solver.U()[c].x();
+  for (int c = 0; c < mesh.n_cells(); ++c) ux[c] = solver->U()[c].x();
   run.u = part ? GatherCells(*part, ux) : ux;
   return run;
 }
 
-TEST(ParallelPimple, CavityLidForceMatchesSerialAtEveryStep) {
+Mesh Cavity() {
   BoxMeshOptions o;
   o.cells = {24, 24, 1};
   o.max = Vector3(1.0, 1.0, 1.0 / 24);
   o.kinds[4] = o.kinds[5] = PatchKind::kEmpty;
-  const Mesh whole = MakeBoxMesh(o);
+  return MakeBoxMesh(o);
+}
+
+// Issue 23 acceptance 2: a run saved on N ranks continues serially, and a
+// serial one on N ranks, through the state in the whole mesh's order; both
+// end where the uninterrupted serial run ends (linear solves at 1e-10).
+TEST(ParallelPimple, StateMovesBetweenRankCounts) {
+  const Mesh whole = Cavity();
+  const LocalDomain local = DecomposeOverWorld(whole);
+  auto reference = CavitySolver(whole, nullptr);
+  for (int s = 0; s < 20; ++s) reference->Step(0.02);
+  const double expected = LidForce(*reference, nullptr);
+
+  // N ranks for 10 steps, then serially.
+  auto ranks = CavitySolver(*local.mesh, local.part);
+  for (int s = 0; s < 10; ++s) ranks->Step(0.02);
+  auto serial = CavitySolver(whole, nullptr);
+  serial->SetState(GatherState(*local.part, *local.mesh, ranks->GetState()));
+  for (int s = 0; s < 10; ++s) serial->Step(0.02);
+  EXPECT_EQ(serial->step(), 20);
+  EXPECT_NEAR(LidForce(*serial, nullptr), expected, 1e-8 * std::abs(expected));
+
+  // Serially for 10 steps, then on N ranks.
+  auto first = CavitySolver(whole, nullptr);
+  for (int s = 0; s < 10; ++s) first->Step(0.02);
+  auto second = CavitySolver(*local.mesh, local.part);
+  second->SetState(ScatterState(*local.part, first->GetState()));
+  for (int s = 0; s < 10; ++s) second->Step(0.02);
+  EXPECT_NEAR(LidForce(*second, local.part.get()), expected, 1e-8 * std::abs(expected));
+  double du = 0.0;
+  std::vector<double> ux(local.mesh->n_cells());
+  for (int c = 0; c < local.mesh->n_cells(); ++c) ux[c] = second->U()[c].x();
+  const std::vector<double> gathered = GatherCells(*local.part, ux);
+  for (int c = 0; c < whole.n_cells(); ++c) du = std::max(du, std::abs(gathered[c] - reference->U()[c].x()));
+  EXPECT_LT(du, 1e-8);
+}
+
+// A state of another mesh is refused with the sizes.
+TEST(ParallelPimple, StateOfAnotherMeshIsRefused) {
+  const Mesh whole = Cavity();
+  const LocalDomain local = DecomposeOverWorld(whole);
+  PimpleSolver::State other = CavitySolver(whole, nullptr)->GetState();
+  other.p.resize(100);
+  other.U.resize(100);
+  try {
+    ScatterState(*local.part, other);
+    FAIL() << "expected a DataFileError";
+  } catch (const DataFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("has 100 values; the decomposed mesh has 576 cells"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(ParallelPimple, CavityLidForceMatchesSerialAtEveryStep) {
+  const Mesh whole = Cavity();
   const int steps = 25;
   const CavityRun serial = RunCavity(whole, nullptr, steps);
   const LocalDomain local = DecomposeOverWorld(whole);

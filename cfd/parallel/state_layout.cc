@@ -1,0 +1,145 @@
+#include "cfd/parallel/state_layout.h"
+
+#include <fmt/format.h>
+
+#include "data/schema/errors.h"
+
+namespace kelvin::cfd {
+namespace {
+
+// Sum over the ranks of each rank's contributions: `take(i)` says whether
+// local entry i contributes, `global(i)` where it goes (and with what sign).
+template <typename Take, typename Global>
+std::vector<double> Reduce(const DomainPart& part, std::size_t n, const double* local, std::size_t n_local, int width,
+                           Take take, Global global) {
+  std::vector<double> sum(n * width, 0.0), count(n, 0.0);
+  for (std::size_t i = 0; i < n_local; ++i) {
+    if (!take(i)) continue;
+    const auto [g, sign] = global(i);
+    for (int k = 0; k < width; ++k) sum[g * width + k] += sign * local[i * width + k];
+    count[g] += 1.0;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sum.data(), static_cast<int>(sum.size()), MPI_DOUBLE, MPI_SUM, part.comm);
+  MPI_Allreduce(MPI_IN_PLACE, count.data(), static_cast<int>(count.size()), MPI_DOUBLE, MPI_SUM, part.comm);
+  // A face between two ranks' cells comes from both (the same value).
+  for (std::size_t g = 0; g < n; ++g) {
+    for (int k = 0; k < width; ++k) sum[g * width + k] /= std::max(count[g], 1.0);
+  }
+  return sum;
+}
+
+template <typename T>
+constexpr int Width() {
+  return std::is_same_v<T, Vector3> ? 3 : 1;
+}
+
+template <typename T>
+const double* Data(const std::vector<T>& v) {
+  if constexpr (std::is_same_v<T, Vector3>) {
+    return v.empty() ? nullptr : v.front().data();
+  } else {
+    return v.data();
+  }
+}
+
+template <typename T>
+std::vector<T> Unflatten(const std::vector<double>& flat) {
+  std::vector<T> out(flat.size() / Width<T>());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if constexpr (std::is_same_v<T, Vector3>) {
+      out[i] = Vector3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+    } else {
+      out[i] = flat[i];
+    }
+  }
+  return out;
+}
+
+template <typename T>
+std::vector<T> GatherCellArray(const DomainPart& part, const std::vector<T>& local) {
+  const auto flat = Reduce(
+      part, part.n_global_cells, Data(local), local.size(), Width<T>(),
+      [&](std::size_t i) { return static_cast<int>(i) < part.n_owned; },
+      [&](std::size_t i) { return std::pair<long long, double>(part.cells[i], 1.0); });
+  return Unflatten<T>(flat);
+}
+
+std::vector<double> GatherFaceArray(const DomainPart& part, const Mesh& mesh, const std::vector<double>& local) {
+  return Reduce(
+      part, part.n_global_faces, local.data(), local.size(), 1,
+      [&](std::size_t f) { return mesh.owner()[f] < part.n_owned; },
+      [&](std::size_t f) { return std::pair<long long, double>(part.faces[f], part.face_signs[f]); });
+}
+
+void Expect(std::size_t size, long long n, const char* what, const char* of) {
+  if (static_cast<long long>(size) != n) {
+    throw DataFileError(fmt::format("the state's {} has {} values; the decomposed mesh has {} {} (a checkpoint of "
+                                    "another mesh?)",
+                                    what, size, n, of));
+  }
+}
+
+template <typename T>
+std::vector<T> ScatterCells(const DomainPart& part, const std::vector<T>& global, const char* what) {
+  Expect(global.size(), part.n_global_cells, what, "cells");
+  std::vector<T> out(part.cells.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = global[part.cells[i]];
+  return out;
+}
+
+std::vector<double> ScatterFaces(const DomainPart& part, const std::vector<double>& global, const char* what) {
+  Expect(global.size(), part.n_global_faces, what, "faces");
+  std::vector<double> out(part.faces.size());
+  for (std::size_t f = 0; f < out.size(); ++f) out[f] = part.face_signs[f] * global[part.faces[f]];
+  return out;
+}
+
+void RequireDecomposable(const PimpleSolver::State& s) {
+  for (const auto& bc : s.bc_state) {
+    if (!bc.empty()) {
+      throw ConfigError("the state holds a boundary condition's own unknowns (the linearized free surface); those do "
+                        "not move between rank counts yet");
+    }
+  }
+  if (!s.turbulence.empty()) {
+    throw ConfigError("the state holds a turbulence model's fields; those do not move between rank counts yet");
+  }
+}
+
+}  // namespace
+
+PimpleSolver::State GatherState(const DomainPart& part, const Mesh& mesh, const PimpleSolver::State& local) {
+  RequireDecomposable(local);
+  PimpleSolver::State g;
+  g.time = local.time;
+  g.step = local.step;
+  g.last_dt = local.last_dt;
+  g.U = GatherCellArray(part, local.U);
+  for (const auto& u : local.U_old) g.U_old.push_back(GatherCellArray(part, u));
+  g.p = GatherCellArray(part, local.p);
+  g.phi = GatherFaceArray(part, mesh, local.phi);
+  for (const auto& phi : local.phi_old) g.phi_old.push_back(GatherFaceArray(part, mesh, phi));
+  g.bc_state = local.bc_state;
+  g.bc_state.pop_back();  // the processor patch's, of U ...
+  g.bc_state.erase(g.bc_state.begin() + static_cast<long>(g.bc_state.size() / 2));  // ... and of p
+  return g;
+}
+
+PimpleSolver::State ScatterState(const DomainPart& part, const PimpleSolver::State& global) {
+  RequireDecomposable(global);
+  PimpleSolver::State s;
+  s.time = global.time;
+  s.step = global.step;
+  s.last_dt = global.last_dt;
+  s.U = ScatterCells(part, global.U, "U");
+  for (const auto& u : global.U_old) s.U_old.push_back(ScatterCells(part, u, "U_old"));
+  s.p = ScatterCells(part, global.p, "p");
+  s.phi = ScatterFaces(part, global.phi, "phi");
+  for (const auto& phi : global.phi_old) s.phi_old.push_back(ScatterFaces(part, phi, "phi_old"));
+  // One (empty) condition state per patch, the processor patch included, for U then p.
+  const std::size_t patches = global.bc_state.size() / 2 + 1;
+  s.bc_state.assign(2 * patches, {});
+  return s;
+}
+
+}  // namespace kelvin::cfd
