@@ -227,7 +227,9 @@ SolverSummary HypreSolver::Solve(const CsrMatrix& a, std::span<const double> b, 
   HYPRE_IJMatrixAssemble(s.ij_a);
   HYPRE_IJVectorSetValues(s.ij_b, s.n, s.row_index.data(), b.data());
   HYPRE_IJVectorSetValues(s.ij_x, s.n, s.row_index.data(), x.data());
-  if (!Amg()) need_setup_ = true;  // a new factorization for the new values
+  // ILU: a new factorization for the new values. Diagonal scaling reads the
+  // matrix's diagonal at each application and needs no new setup.
+  if (options_.type == LinearSolverOptions::Type::kBiCgStabIlu) need_setup_ = true;
   if (need_setup_ || !s.has_setup) {
     if (Cg()) {
       HYPRE_ParCSRPCGSetup(s.krylov, s.a, s.b, s.x);

@@ -165,7 +165,7 @@ std::vector<int> PartitionCells(const Mesh& mesh, int n_parts, MPI_Comm comm, co
   if (n_parts > 1 && mesh.n_cells() < static_cast<long long>(n_parts) * options.min_cells_per_rank) {
     throw ConfigError(fmt::format("{}: {} cells over {} ranks is {} per rank; expected at least {} cells per rank "
                                   "(partition.min_cells_per_rank; with fewer the halo exchanges cost more than the "
-                                  "rank saves): run on at most {} ranks",
+                                  "rank saves): run on at most {} rank(s)",
                                   mesh.source(), mesh.n_cells(), n_parts, mesh.n_cells() / n_parts,
                                   options.min_cells_per_rank,
                                   std::max(1, mesh.n_cells() / options.min_cells_per_rank)));

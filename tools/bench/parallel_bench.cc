@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <set>
 #include <vector>
@@ -76,6 +77,20 @@ int Triad() {
   return 0;
 }
 
+// Resident memory now (MB), from /proc/self/status (VmRSS).
+double ResidentMb() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  double kb = 0.0;
+  while (in >> key) {
+    if (key == "VmRSS:") {
+      in >> kb;
+      break;
+    }
+  }
+  return kb / 1024.0;
+}
+
 int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu) {
   EnsureMpi();
   int rank = 0, size = 1;
@@ -132,13 +147,14 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu)
     }
   }
   const std::vector<double> rss = Gathered(usage.ru_maxrss / 1024.0, MPI_COMM_WORLD);
+  const std::vector<double> resident = Gathered(ResidentMb(), MPI_COMM_WORLD);
   const std::vector<double> own = Gathered(owned, MPI_COMM_WORLD);
   const std::vector<double> ghost = Gathered(ghosts, MPI_COMM_WORLD);
   const std::vector<double> nbr = Gathered(static_cast<double>(neighbours.size()), MPI_COMM_WORLD);
   if (rank == 0) {
     std::printf("{\"ranks\": %d, \"cells\": %lld, \"decompose_s\": %.4f, \"step_s\": %s, \"pressure_iterations\": %.0f, \"momentum_iterations\": %.0f, "
-                "\"rss_mb\": %s, \"owned\": %s, \"ghosts\": %s, \"neighbours\": %s}\n",
-                size, n_cells, decompose_s, List(step_s).c_str(), p_iters, u_iters, List(rss).c_str(), List(own).c_str(),
+                "\"rss_mb\": %s, \"resident_mb\": %s, \"owned\": %s, \"ghosts\": %s, \"neighbours\": %s}\n",
+                size, n_cells, decompose_s, List(step_s).c_str(), p_iters, u_iters, List(rss).c_str(), List(resident).c_str(), List(own).c_str(),
                 List(ghost).c_str(), List(nbr).c_str());
   }
   return 0;

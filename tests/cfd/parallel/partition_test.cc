@@ -101,7 +101,7 @@ TEST(PartitionCells, TooFewCellsPerRankIsRefusedWithTheRankCountThatFits) {
   } catch (const ConfigError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("640 cells over 4 ranks is 160 per rank; expected at least 200"), std::string::npos) << what;
-    EXPECT_NE(what.find("run on at most 3 ranks"), std::string::npos) << what;
+    EXPECT_NE(what.find("run on at most 3 rank(s)"), std::string::npos) << what;
   }
 }
 
