@@ -43,14 +43,18 @@ std::vector<std::string> SplitNames(const std::string& names) {
 
 void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solver,
                      const CheckpointScalars& scalars, const CheckpointArrays& arrays) {
-  const PimpleSolver::State s = solver.GetState();
+  WriteCheckpointState(path, solver.GetState(), solver.mesh().n_cells(), solver.mesh().n_faces(), scalars, arrays);
+}
+
+void WriteCheckpointState(const std::filesystem::path& path, const PimpleSolver::State& s, long long n_cells,
+                          long long n_faces, const CheckpointScalars& scalars, const CheckpointArrays& arrays) {
   data::H5Writer w(path, data::H5Writer::Mode::kCreate);
   w.SetAttribute("/", "kind", "kelvin PIMPLE checkpoint");
   w.SetAttribute("/", "time", s.time);
   w.SetAttribute("/", "step", static_cast<double>(s.step));
   w.SetAttribute("/", "last_dt", s.last_dt);
-  w.SetAttribute("/", "n_cells", static_cast<double>(solver.mesh().n_cells()));
-  w.SetAttribute("/", "n_faces", static_cast<double>(solver.mesh().n_faces()));
+  w.SetAttribute("/", "n_cells", static_cast<double>(n_cells));
+  w.SetAttribute("/", "n_faces", static_cast<double>(n_faces));
   w.SetAttribute("/", "U_levels", static_cast<double>(s.U_old.size()));
   w.SetAttribute("/", "phi_levels", static_cast<double>(s.phi_old.size()));
   w.SetAttribute("/", "bc_states", static_cast<double>(s.bc_state.size()));
@@ -123,15 +127,12 @@ CheckpointArrays RunArrays(const data::H5Reader& r) {
 
 }  // namespace
 
-CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver) {
+CheckpointState ReadCheckpointState(const std::filesystem::path& path) {
   data::H5Reader r(path);
-  const auto n_cells = static_cast<int>(r.NumberAttribute("/", "n_cells"));
-  const auto n_faces = static_cast<int>(r.NumberAttribute("/", "n_faces"));
-  if (n_cells != solver.mesh().n_cells() || n_faces != solver.mesh().n_faces()) {
-    throw DataFileError(fmt::format("{}: checkpoint has {} cells and {} faces; the mesh has {} and {}", path.string(),
-                                    n_cells, n_faces, solver.mesh().n_cells(), solver.mesh().n_faces()));
-  }
-  PimpleSolver::State s;
+  CheckpointState c;
+  c.n_cells = static_cast<long long>(r.NumberAttribute("/", "n_cells"));
+  c.n_faces = static_cast<long long>(r.NumberAttribute("/", "n_faces"));
+  PimpleSolver::State& s = c.state;
   s.time = r.NumberAttribute("/", "time");
   s.step = static_cast<int>(r.NumberAttribute("/", "step"));
   s.last_dt = r.NumberAttribute("/", "last_dt");
@@ -152,12 +153,22 @@ CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver
       s.turbulence.emplace_back(name, r.Read("turbulence/" + name).values);
     }
   }
+  c.scalars = RunScalars(r);
+  return c;
+}
+
+CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver) {
+  CheckpointState c = ReadCheckpointState(path);
+  if (c.n_cells != solver.mesh().n_cells() || c.n_faces != solver.mesh().n_faces()) {
+    throw DataFileError(fmt::format("{}: checkpoint has {} cells and {} faces; the mesh has {} and {}", path.string(),
+                                    c.n_cells, c.n_faces, solver.mesh().n_cells(), solver.mesh().n_faces()));
+  }
   try {
-    solver.SetState(s);
+    solver.SetState(c.state);
   } catch (const DataFileError& e) {
     throw DataFileError(fmt::format("{}: {}", path.string(), e.what()));
   }
-  return RunScalars(r);
+  return c.scalars;
 }
 
 CheckpointScalars ReadCheckpointScalars(const std::filesystem::path& path) {

@@ -27,6 +27,20 @@ void WriteCheckpoint(const std::filesystem::path& path, const PimpleSolver& solv
 // Restores the state and returns the run scalars (none in checkpoints
 // written without them); a DataFileError if the file does not match the mesh.
 CheckpointScalars ReadCheckpoint(const std::filesystem::path& path, PimpleSolver& solver);
+
+// The same, from a state rather than a solver, with the cell and face counts
+// of its mesh (a run on ranks writes the whole mesh's state: cfd/parallel/
+// run_checkpoint.h).
+void WriteCheckpointState(const std::filesystem::path& path, const PimpleSolver::State& state, long long n_cells,
+                          long long n_faces, const CheckpointScalars& scalars = {},
+                          const CheckpointArrays& arrays = {});
+struct CheckpointState {
+  PimpleSolver::State state;
+  long long n_cells = 0, n_faces = 0;  // of the mesh it was written on
+  CheckpointScalars scalars;
+};
+CheckpointState ReadCheckpointState(const std::filesystem::path& path);
+
 // The run scalars alone (a free body restores its pose before the solver
 // state places the mesh).
 CheckpointScalars ReadCheckpointScalars(const std::filesystem::path& path);

@@ -53,6 +53,7 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
   for (int r : cell_rank) KELVIN_CHECK(r >= 0 && r < part->size, "cell ranks in [0, size)");
   part->n_global_cells = nc;
   part->n_global_faces = mesh.n_faces();
+  part->n_global_internal_faces = mesh.n_internal_faces();
   const Ownership own = Owners(cell_rank, part->size);
 
   // Local cells: owned, then ghosts, each in ascending global order.

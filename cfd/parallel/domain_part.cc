@@ -1,6 +1,9 @@
 #include "cfd/parallel/domain_part.h"
 
 #include <algorithm>
+#include <string>
+
+#include "data/schema/errors.h"
 
 namespace kelvin::cfd {
 namespace {
@@ -18,6 +21,44 @@ double DomainPart::Sum(double local) const { return Reduce(*this, local, MPI_SUM
 double DomainPart::Max(double local) const { return Reduce(*this, local, MPI_MAX); }
 double DomainPart::Min(double local) const { return Reduce(*this, local, MPI_MIN); }
 bool DomainPart::All(bool local) const { return Min(local ? 1.0 : 0.0) > 0.5; }
+
+void DomainPart::SumInPlace(std::span<double> values) const {
+  if (!parallel() || values.empty()) return;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, comm);
+}
+
+std::vector<double> AllGather(const DomainPart& part, std::span<const double> local) {
+  if (!part.parallel()) return {local.begin(), local.end()};
+  int n = static_cast<int>(local.size());
+  std::vector<int> counts(part.size), offsets(part.size, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, part.comm);
+  for (int r = 1; r < part.size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<double> all(static_cast<std::size_t>(offsets.back() + counts.back()));
+  MPI_Allgatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, part.comm);
+  return all;
+}
+
+void OnFirstRank(const DomainPart* part, const std::function<void()>& write) {
+  if (!part || !part->parallel()) {
+    write();
+    return;
+  }
+  std::string error;
+  if (part->rank == 0) {
+    try {
+      write();
+    } catch (const std::exception& e) {  // a DataFileError, or the file system's own
+      error = e.what();
+      if (error.empty()) error = "a file could not be written";
+    }
+  }
+  int n = static_cast<int>(error.size());
+  MPI_Bcast(&n, 1, MPI_INT, 0, part->comm);
+  if (n == 0) return;
+  error.resize(static_cast<std::size_t>(n));
+  MPI_Bcast(error.data(), n, MPI_CHAR, 0, part->comm);
+  throw DataFileError(error);
+}
 
 int DomainPart::OwnedCell(long long global) const {
   // The owned cells are in ascending global order.

@@ -17,6 +17,7 @@
 
 #include <mpi.h>
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -51,6 +52,7 @@ struct DomainPart {
   // the local face is oriented along it or against it (owned-ghost faces
   // point away from the owned cell).
   long long n_global_faces = 0;
+  long long n_global_internal_faces = 0;  // the whole mesh's boundary faces follow these
   std::vector<long long> faces;
   std::vector<signed char> face_signs;
   std::shared_ptr<const HaloExchange> halo;
@@ -61,6 +63,8 @@ struct DomainPart {
   double Max(double local) const;
   double Min(double local) const;
   bool All(bool local) const;
+  // Component-wise sums of a few values at once (one reduction).
+  void SumInPlace(std::span<double> values) const;
   // Local index of cell `global` of the undecomposed mesh when this rank owns
   // it, else -1.
   int OwnedCell(long long global) const;
@@ -75,6 +79,16 @@ template <typename T>
 void UpdateGhosts(const DomainPart* part, std::vector<T>& values) {
   UpdateGhosts(part, std::span<T>(values));
 }
+
+// Every rank's values one after the other in rank order, on every rank
+// (collective; the values themselves when serial).
+std::vector<double> AllGather(const DomainPart& part, std::span<const double> local);
+
+// Files of a run on ranks are written once: runs `write` on rank 0 of a
+// parallel part (on the only rank otherwise). What it throws there is thrown
+// on every rank as a DataFileError with its message, so all stop alike
+// (collective). Serially it runs `write` as it is.
+void OnFirstRank(const DomainPart* part, const std::function<void()>& write);
 
 // Cells whose rows this rank solves: n_owned of a parallel part, else all.
 inline int OwnedCells(const DomainPart* part, const Mesh& mesh) {

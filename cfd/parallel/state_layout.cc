@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "cfd/parallel/decompose.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -101,12 +102,48 @@ void RequireDecomposable(const PimpleSolver::State& s) {
                         "not move between rank counts yet");
     }
   }
-  if (!s.turbulence.empty()) {
-    throw ConfigError("the state holds a turbulence model's fields; those do not move between rank counts yet");
+}
+
+// The turbulence model's arrays over the boundary faces (the wall
+// function's face viscosity); every other array is over the cells.
+bool BoundaryArray(const std::string& name) { return name == "nut_wall"; }
+
+// A boundary-face array of the local mesh in the order of the whole mesh's
+// boundary faces (the faces on the processor patch are the ghosts' and are
+// left out: every boundary face of the whole mesh is some rank's own).
+std::vector<double> GatherBoundaryArray(const DomainPart& part, const Mesh& mesh, const std::vector<double>& local) {
+  const int ni = mesh.n_internal_faces();
+  const long long gi = part.n_global_internal_faces;
+  const int processor = mesh.FindPatch(kProcessorPatch);
+  const Patch* proc = processor >= 0 ? &mesh.patches()[processor] : nullptr;
+  auto on_processor = [&](std::size_t f) {
+    return proc && static_cast<int>(f) >= proc->start && static_cast<int>(f) < proc->start + proc->size;
+  };
+  return Reduce(
+      part, static_cast<std::size_t>(part.n_global_faces - gi), local.data(), local.size(), 1,
+      [&](std::size_t b) { return !on_processor(b + ni); },
+      [&](std::size_t b) { return std::pair<long long, double>(part.faces[b + ni] - gi, 1.0); });
+}
+
+std::vector<double> ScatterBoundaryArray(const DomainPart& part, const Mesh& mesh, const std::vector<double>& global,
+                                         const std::string& name) {
+  const long long gi = part.n_global_internal_faces;
+  Expect(global.size(), part.n_global_faces - gi, name.c_str(), "boundary faces");
+  const int ni = mesh.n_internal_faces();
+  std::vector<double> out(mesh.n_boundary_faces(), 0.0);
+  for (int b = 0; b < mesh.n_boundary_faces(); ++b) {
+    const long long g = part.faces[b + ni] - gi;
+    // A ghost's face inside the whole mesh (on the processor patch) has no boundary value.
+    if (g >= 0) out[b] = global[g];
   }
+  return out;
 }
 
 }  // namespace
+
+std::vector<double> GatherBoundaryFaces(const DomainPart& part, const Mesh& mesh, const std::vector<double>& local) {
+  return GatherBoundaryArray(part, mesh, local);
+}
 
 PimpleSolver::State GatherState(const DomainPart& part, const Mesh& mesh, const PimpleSolver::State& local) {
   RequireDecomposable(local);
@@ -122,10 +159,14 @@ PimpleSolver::State GatherState(const DomainPart& part, const Mesh& mesh, const 
   g.bc_state = local.bc_state;
   g.bc_state.pop_back();  // the processor patch's, of U ...
   g.bc_state.erase(g.bc_state.begin() + static_cast<long>(g.bc_state.size() / 2));  // ... and of p
+  for (const auto& [name, values] : local.turbulence) {
+    g.turbulence.emplace_back(name, BoundaryArray(name) ? GatherBoundaryArray(part, mesh, values)
+                                                        : GatherCellArray(part, values));
+  }
   return g;
 }
 
-PimpleSolver::State ScatterState(const DomainPart& part, const PimpleSolver::State& global) {
+PimpleSolver::State ScatterState(const DomainPart& part, const Mesh& mesh, const PimpleSolver::State& global) {
   RequireDecomposable(global);
   PimpleSolver::State s;
   s.time = global.time;
@@ -139,6 +180,10 @@ PimpleSolver::State ScatterState(const DomainPart& part, const PimpleSolver::Sta
   // One (empty) condition state per patch, the processor patch included, for U then p.
   const std::size_t patches = global.bc_state.size() / 2 + 1;
   s.bc_state.assign(2 * patches, {});
+  for (const auto& [name, values] : global.turbulence) {
+    s.turbulence.emplace_back(name, BoundaryArray(name) ? ScatterBoundaryArray(part, mesh, values, name)
+                                                        : ScatterCells(part, values, name.c_str()));
+  }
   return s;
 }
 

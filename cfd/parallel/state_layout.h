@@ -15,10 +15,17 @@ namespace kelvin::cfd {
 PimpleSolver::State GatherState(const DomainPart& part, const Mesh& mesh, const PimpleSolver::State& local);
 
 // The rank's part (owned and ghost cells, local faces) of a state in the
-// whole mesh's order. Throws DataFileError when the state's sizes are not
-// those of the decomposed mesh (a checkpoint of another mesh), and
-// ConfigError for state that is not decomposed yet (conditions with their
-// own unknowns, a turbulence model).
-PimpleSolver::State ScatterState(const DomainPart& part, const PimpleSolver::State& global);
+// whole mesh's order, on `mesh`, the rank's local mesh. Throws DataFileError
+// when the state's sizes are not those of the decomposed mesh (a checkpoint of
+// another mesh), and ConfigError for state that is not decomposed yet
+// (conditions with their own unknowns: the linearized free surface). The
+// turbulence model's arrays move with the cells, its wall-face viscosity with
+// the boundary faces.
+PimpleSolver::State ScatterState(const DomainPart& part, const Mesh& mesh, const PimpleSolver::State& global);
+
+// One value per boundary face of the rank's local mesh `mesh`, as the whole
+// mesh's boundary faces (n_global_faces - n_global_internal_faces values, in
+// its order), on every rank (collective): gathered output of patch fields.
+std::vector<double> GatherBoundaryFaces(const DomainPart& part, const Mesh& mesh, const std::vector<double>& local);
 
 }  // namespace kelvin::cfd

@@ -10,12 +10,10 @@ CaptiveSampler::CaptiveSampler(const Case& c, std::vector<int> hull, PrimeScales
 }
 
 void CaptiveSampler::AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) {
-  std::vector<const PatchFaceForces*> faces;
-  for (int k : hull_) faces.push_back(&record.forces.Faces(k));
   CaptiveSample s;
   s.time = solver.time();
   s.pose = motion_.body().At(s.time);
-  s.loads = SumHullLoads(solver.mesh(), hull_, faces, s.pose, motion_.body().centre());
+  s.loads = record.forces.ShipLoads(solver.mesh(), hull_, s.pose, motion_.body().centre());
   s.prime = scales_.ToPrime(s.loads.Total());
   samples_.push_back(s);
 }

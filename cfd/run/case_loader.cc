@@ -12,6 +12,7 @@
 #include "cfd/freesurface/linearized_free_surface.h"
 #include "cfd/mesh/box_mesh.h"
 #include "cfd/mesh/poly_mesh_reader.h"
+#include "cfd/parallel/decompose.h"
 #include "cfd/run/boundary_loader.h"
 #include "cfd/run/case_config.h"
 #include "cfd/turbulence/k_omega_sst.h"
@@ -167,7 +168,8 @@ PimpleOptions LoadPimple(const ConfigNode& root) {
 }
 
 // `turbulence:` k-omega SST (or laminar) on the solver.
-void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, PimpleSolver& solver) {
+void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, PimpleSolver& solver,
+                    std::shared_ptr<const DomainPart> part) {
   tn.ExpectKeys({"model", "inflow", "convection", "relax"});
   const std::string model = tn.Get<std::string>("model");
   if (model != "kOmegaSST" && model != "laminar") tn["model"].Fail("kOmegaSST or laminar");
@@ -191,7 +193,7 @@ void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, PimpleSol
     bool any_wall = false;
     for (TurbulencePatchRole r : roles) any_wall = any_wall || r == TurbulencePatchRole::kWall;
     if (!any_wall) tn["model"].Fail("a case with at least one wall patch (U: noSlip or movingWall) for kOmegaSST");
-    solver.SetTurbulence(std::make_unique<KOmegaSst>(mesh, nu, so, roles));
+    solver.SetTurbulence(std::make_unique<KOmegaSst>(mesh, nu, so, roles, std::move(part)));
   }
 }
 
@@ -204,12 +206,20 @@ struct Fields {
 
 Fields LoadBoundary(const ConfigNode& b, const Mesh& mesh, const RigidMeshMotion* motion) {
   std::vector<std::string> patch_names;
-  for (const Patch& p : mesh.patches()) patch_names.push_back(p.name);
+  for (const Patch& p : mesh.patches()) {
+    if (p.kind != PatchKind::kProcessor) patch_names.push_back(p.name);
+  }
   b.ExpectKeys(patch_names);
   std::vector<std::unique_ptr<BoundaryCondition<Vector3>>> u_bcs;
   std::vector<std::unique_ptr<BoundaryCondition<double>>> p_bcs;
   Fields f;
   for (const Patch& p : mesh.patches()) {
+    if (p.kind == PatchKind::kProcessor) {
+      // The ghost cells' outer faces on a rank: their values never reach an owned cell.
+      u_bcs.push_back(std::make_unique<ZeroGradient<Vector3>>());
+      p_bcs.push_back(std::make_unique<ZeroGradient<double>>());
+      continue;
+    }
     if (!b.Has(p.name)) {
       if (p.kind == PatchKind::kEmpty) {
         u_bcs.push_back(std::make_unique<Empty<Vector3>>());
@@ -312,6 +322,34 @@ void CheckRunSections(const ConfigNode& root, const Case& c) {
   }
 }
 
+// What does not run on ranks yet is refused before the mesh is cut.
+void RefuseOnRanks(const ConfigNode& root, int ranks) {
+  auto refuse = [&](const ConfigNode& node, const std::string& what) {
+    throw ConfigError(fmt::format("{}: {} does not run on {} MPI ranks yet; expected one rank (run it without mpirun)",
+                                  node.Where(), what, ranks));
+  };
+  if (root.Has("motion") && IsFreeMotion(root["motion"])) {
+    refuse(root["motion"], "a free-running motion (motion.kind: free)");
+  }
+  for (const char* section : {"propeller", "rudder", "maneuver"}) {
+    if (root.Has(section)) refuse(root[section], fmt::format("the {} section", section));
+  }
+  if (root.Has("resistance")) refuse(root["resistance"], "the resistance report (resistance:)");
+}
+
+// Cuts the loaded whole mesh over the ranks of `comm` (more than one): the
+// case then holds the rank's local mesh and keeps the whole one for output.
+void DecomposeCase(const ConfigNode& root, Case& c, MPI_Comm comm) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  RefuseOnRanks(root, size);
+  const std::vector<int> cell_rank = PartitionCells(*c.mesh, size, comm, c.settings.partition);
+  LocalDomain local = Decompose(*c.mesh, cell_rank, comm);
+  c.whole_mesh = std::move(c.mesh);
+  c.mesh = std::move(local.mesh);
+  c.part = std::move(local.part);
+}
+
 }  // namespace
 
 double PatchArea(const Mesh& mesh, std::span<const int> patches) {
@@ -331,7 +369,13 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
     root["mesh"].Fail("a poly_mesh entry (the grid is replaced by another grid of the family)");
   }
   c.mesh = LoadMesh(root["mesh"], case_dir, overrides.poly_mesh);
+  if (overrides.ranks != MPI_COMM_NULL) {
+    int size = 1;
+    MPI_Comm_size(overrides.ranks, &size);
+    if (size > 1) DecomposeCase(root, c, overrides.ranks);
+  }
   const Mesh& mesh = *c.mesh;
+  const Mesh& whole = c.whole_mesh ? *c.whole_mesh : mesh;
   if (overrides.motion && root.Has("motion")) root["motion"].Fail("no motion: section (the campaign sets it)");
   if (overrides.motion) {
     c.motion = std::make_unique<RigidMeshMotion>(*c.mesh, RigidMotion(*overrides.motion));
@@ -358,7 +402,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   if (!overrides.output.empty()) s.output.directory = overrides.output;
   c.force_patches = ResolvePatches(root["output"].Has("forces") ? root["output"]["forces"] : root["output"], mesh,
                                    s.output.force_patches);
-  if (s.reference.area == 0.0) s.reference.area = PatchArea(mesh, c.force_patches);
+  if (s.reference.area == 0.0) s.reference.area = PatchArea(whole, c.force_patches);
   if (c.free_running) {
     const ConfigNode m = root["motion"];
     if (c.free_running->hull_patches.empty()) {
@@ -378,13 +422,13 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   Fields fields = LoadBoundary(root["boundary"], mesh, c.motion.get());
   ValidateAt(root["solution"], [&] {
     c.solver = std::make_unique<PimpleSolver>(mesh, physics, LoadSchemes(root), LoadPimple(root), std::move(fields.U),
-                                              std::move(fields.p));
+                                              std::move(fields.p), c.part);
   });
   if (c.motion) c.motion->Attach(*c.solver);
-  if (root.Has("turbulence")) LoadTurbulence(root["turbulence"], mesh, s.nu, *c.solver);
+  if (root.Has("turbulence")) LoadTurbulence(root["turbulence"], mesh, s.nu, *c.solver, c.part);
   c.free_surface = FindFreeSurface(*c.solver);
   if (s.time.steady && s.time.steady->window_is_flow_through) {
-    s.time.steady->criterion.window = FlowThroughTime(mesh, s.reference);
+    s.time.steady->criterion.window = FlowThroughTime(whole, s.reference);
   }
   ValidateAt(t, [&] { s.time.Validate(); });
   CheckRunSections(root, c);
@@ -393,6 +437,8 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   if (auto propeller = LoadPropellerActuator(c, root)) c.actuators.push_back(std::move(propeller));
   if (auto rudder = LoadRudderActuator(c, root)) c.actuators.push_back(std::move(rudder));
   c.maneuver = LoadManeuverPilot(root, c, s.output.directory, overrides.maneuver);
+  // Only rank 0 writes the gathered output; the others release the whole mesh.
+  if (c.part && c.part->rank != 0) c.whole_mesh.reset();
   return c;
 }
 

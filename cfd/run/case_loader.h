@@ -1,7 +1,7 @@
 // The one reader of a YAML case file (`kelvin run`, captive runs, `kelvin
 // gci`); cfd/README.md lists its sections and keys:
 //   mesh / physics / reference / schemes / solution / time / turbulence /
-//   boundary / motion / output / resistance
+//   boundary / motion / output / resistance / partition
 // Each section is read once into its component's Options (defaults live in
 // those structs). ReadCaseSettings reads what needs no mesh; LoadCase builds
 // the mesh, the conditions and the solver on top. A bad key, an unknown
@@ -18,6 +18,8 @@
 
 #include "cfd/motion/free_body.h"
 #include "cfd/motion/mesh_motion.h"
+#include "cfd/parallel/domain_part.h"
+#include "cfd/parallel/partition.h"
 #include "cfd/run/body_actuator.h"
 #include "cfd/run/free_running_loader.h"
 #include "cfd/run/maneuver_settings.h"
@@ -69,6 +71,7 @@ struct CaseSettings {
   OutputOptions output;
   std::optional<ResistanceOptions> resistance;
   bool free_surface = false;  // some patch has a linearizedFreeSurface pressure
+  PartitionOptions partition;  // `partition:` how a run on MPI ranks cuts the mesh
 };
 
 // Reads `physics`, `reference`, `time`, `output` and `resistance` (and
@@ -76,9 +79,15 @@ struct CaseSettings {
 CaseSettings ReadCaseSettings(const data::ConfigNode& root, const std::filesystem::path& case_dir);
 
 // Everything a case file defines, built and validated (the mesh is owned).
+// On MPI ranks (CaseOverrides::ranks) `mesh` is the rank's local mesh
+// (cfd/parallel/decompose.h), `part` the rank's part, and `whole_mesh` the
+// undecomposed mesh on rank 0, which writes the gathered output (the other
+// ranks release it after loading); serially both are null.
 struct Case {
   CaseSettings settings;
   std::unique_ptr<Mesh> mesh;
+  std::unique_ptr<Mesh> whole_mesh;
+  std::shared_ptr<const DomainPart> part;
   // Rigid motion of the whole mesh (the `motion:` section): prescribed, or
   // of the free body; null without a motion.
   std::unique_ptr<RigidMeshMotion> motion;
@@ -104,6 +113,9 @@ struct CaseOverrides {
   std::filesystem::path output;         // non-empty: replaces output.directory
   std::optional<SteadyOptions> steady;  // replaces time.steady (window in seconds)
   std::string maneuver;                 // non-empty: replaces maneuver.kind (kelvin run -m)
+  // The ranks the run is decomposed over: MPI_COMM_NULL or a communicator of
+  // one rank runs serially. Collective over it.
+  MPI_Comm ranks = MPI_COMM_NULL;
 };
 
 Case LoadCase(const data::ConfigNode& root, const std::filesystem::path& case_dir,

@@ -82,6 +82,17 @@ TimeControlOptions ReadTime(const ConfigNode& t) {
   return o;
 }
 
+// `partition:` how a run on MPI ranks cuts the mesh (cfd/parallel/partition.h).
+PartitionOptions ReadPartition(const ConfigNode& n) {
+  n.ExpectKeys({"column_aspect", "imbalance", "min_cells_per_rank"});
+  PartitionOptions o;
+  o.column_aspect = n.Get<double>("column_aspect", o.column_aspect);
+  o.imbalance = n.Get<double>("imbalance", o.imbalance);
+  o.min_cells_per_rank = n.Get<int>("min_cells_per_rank", o.min_cells_per_rank);
+  ValidateAt(n, [&] { o.Validate(); });
+  return o;
+}
+
 OutputOptions ReadOutput(const ConfigNode& o, const fs::path& case_dir) {
   RefuseMoved(o, "resistance", "reference: {speed, direction, area} gives the per-step C_T, C_F, C_P");
   if (o.Has("captive") && o["captive"].IsMap()) {
@@ -141,7 +152,7 @@ void ResistanceOptions::Validate() const {
 
 CaseSettings ReadCaseSettings(const ConfigNode& root, const fs::path& case_dir) {
   root.ExpectKeys({"mesh", "physics", "reference", "schemes", "solution", "time", "boundary", "output", "motion",
-                   "turbulence", "resistance", "propeller", "rudder", "maneuver"});
+                   "turbulence", "resistance", "propeller", "rudder", "maneuver", "partition"});
   CaseSettings s;
   s.file = root.source();
   const ConfigNode ph = root["physics"];
@@ -153,6 +164,7 @@ CaseSettings ReadCaseSettings(const ConfigNode& root, const fs::path& case_dir) 
   s.time = ReadTime(root["time"]);
   s.output = ReadOutput(root["output"], case_dir);
   if (root.Has("resistance")) s.resistance = ReadResistance(root["resistance"], case_dir);
+  if (root.Has("partition")) s.partition = ReadPartition(root["partition"]);
   s.free_surface = HasFreeSurface(root["boundary"]);
   if (s.time.steady && s.reference.speed == 0.0 && s.time.steady->window_is_flow_through) {
     root["time"]["steady"].Fail("a window (s of pseudo-time; 0: steps only), or reference.speed for one flow-through");

@@ -41,19 +41,26 @@ struct PatchForce {
   Vector3 total() const { return pressure + viscous; }
 };
 
-// The face forces of the patches the run reads, computed once per step.
+// The face forces of the patches the run reads, computed once per step. On
+// MPI ranks the faces are the rank's own and every sum is over all ranks.
 class StepForces {
  public:
   // Computes the patches' face forces at the solver's present state.
   void Compute(const PimpleSolver& solver, std::span<const int> patches, double rho, double nu);
   // Sets one patch's face forces (a state given rather than computed: tests of monitors).
   void Set(int patch, PatchFaceForces faces);
+  // This rank's faces of the patch.
   const PatchFaceForces& Faces(int patch) const;
   PatchForce Sum(int patch) const;
   // Patches summed in the order given.
   PatchForce Sum(std::span<const int> patches) const;
+  // Ship-axis loads of the patches about `centre_body` with the mesh at `pose`
+  // (SumHullLoads over the ranks).
+  HullLoads ShipLoads(const Mesh& mesh, std::span<const int> patches, const Pose& pose,
+                      const Vector3& centre_body) const;
 
  private:
+  const DomainPart* part_ = nullptr;
   std::map<int, PatchFaceForces> faces_;
   std::map<int, PatchForce> sums_;
 };

@@ -26,7 +26,7 @@ std::vector<std::unique_ptr<Monitor>> MakeMonitors(const Case& c) {
   std::vector<std::unique_ptr<Monitor>> m;
   if (c.free_body) m.push_back(std::make_unique<FreeRunningCoupler>(c));
   if (c.maneuver) m.push_back(std::make_unique<ManeuverPilot>(c, *c.maneuver));
-  m.push_back(std::make_unique<FieldOutput>(s.output.directory, s.output.vtu_interval));
+  m.push_back(std::make_unique<FieldOutput>(s.output.directory, s.output.vtu_interval, c.whole_mesh.get()));
   m.push_back(std::make_unique<TurbulenceReport>());
   if (s.reference.speed > 0.0 && !c.force_patches.empty()) m.push_back(std::make_unique<ForceCoefficients>(c));
   if (s.resistance) m.push_back(std::make_unique<ResistanceMonitor>(c));
@@ -58,13 +58,23 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
   overrides.poly_mesh = options.poly_mesh_override;
   overrides.output = options.output_override;
   overrides.maneuver = options.maneuver;
+  overrides.ranks = options.ranks;
   Case c = LoadCaseFile(case_file, overrides);
-  spdlog::info("mesh quality:\n{}", c.mesh->Quality().Report());
-  fs::create_directories(c.settings.output.directory);
-  // What a killed earlier run left half-written beside its files.
-  if (const int n = data::RemoveStaleTemporaries(c.settings.output.directory)) {
-    spdlog::info("removed {} temporary file(s) a stopped run left in {}", n, c.settings.output.directory.string());
+  const DomainPart* part = c.part.get();
+  if (part) {
+    spdlog::info("decomposed over {} MPI ranks: {} cells, rank {} owns {} and holds {} ghost cells", part->size,
+                 part->n_global_cells, part->rank, part->n_owned, part->cells.size() - part->n_owned);
   }
+  if (!part || part->rank == 0) {
+    spdlog::info("mesh quality:\n{}", (c.whole_mesh ? *c.whole_mesh : *c.mesh).Quality().Report());
+  }
+  OnFirstRank(part, [&] {
+    fs::create_directories(c.settings.output.directory);
+    // What a killed earlier run left half-written beside its files.
+    if (const int n = data::RemoveStaleTemporaries(c.settings.output.directory)) {
+      spdlog::info("removed {} temporary file(s) a stopped run left in {}", n, c.settings.output.directory.string());
+    }
+  });
   std::vector<std::unique_ptr<Monitor>> owned = MakeMonitors(c);
   std::vector<Monitor*> monitors;
   for (auto& m : owned) monitors.push_back(m.get());

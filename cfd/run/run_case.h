@@ -11,6 +11,8 @@
 #include <functional>
 #include <string>
 
+#include <mpi.h>
+
 #include "cfd/run/run_driver.h"
 
 namespace kelvin::cfd {
@@ -24,6 +26,10 @@ struct RunOptions {
   // Polled after each step (RunDriverOptions::stop_requested): `kelvin run`
   // passes the SIGTERM / SIGINT it caught.
   std::function<int()> stop_requested;
+  // The MPI ranks to decompose the case over (cfd/parallel): a communicator
+  // of more than one rank runs on them (collective; rank 0 writes every
+  // file); MPI_COMM_NULL or one rank runs serially.
+  MPI_Comm ranks = MPI_COMM_NULL;
 };
 
 struct RunSummary {

@@ -10,6 +10,7 @@
 
 #include "cfd/freesurface/linearized_free_surface.h"
 #include "cfd/io/checkpoint.h"
+#include "cfd/parallel/run_checkpoint.h"
 #include "data/report/progress.h"
 #include "data/schema/errors.h"
 
@@ -17,6 +18,19 @@ namespace kelvin::cfd {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The centre of the cell with the largest Courant number, where the mesh is
+// at this step. On ranks the cell is one of the whole mesh; its owner knows
+// where it is.
+Vector3 CourantLocation(const Mesh& mesh, const DomainPart* part, int cell) {
+  if (!part || !part->parallel()) {
+    return cell >= 0 ? mesh.cell_centres()[cell] : Vector3::Constant(std::numeric_limits<double>::quiet_NaN());
+  }
+  const int local = part->OwnedCell(cell);
+  Vector3 x = local >= 0 ? mesh.cell_centres()[local] : Vector3::Zero();
+  part->SumInPlace(std::span<double>(x.data(), 3));
+  return x;
+}
 
 // The driver's own history columns.
 struct CoreColumns {
@@ -42,7 +56,8 @@ struct CoreColumns {
     }
   }
 
-  void Fill(History& h, const Mesh& mesh, const StepRecord& r, std::span<const int> force_patches) const {
+  void Fill(History& h, const Mesh& mesh, const DomainPart* part, const StepRecord& r,
+            std::span<const int> force_patches) const {
     const StepSummary& s = r.step;
     h.Set(time, s.time);
     h.Set(courant, s.courant_max);
@@ -53,8 +68,7 @@ struct CoreColumns {
     h.Set(outer, static_cast<double>(s.outer_iterations));
     h.Set(pressure_iterations, static_cast<double>(s.pressure_iterations));
     h.Set(cpu, r.cpu_seconds);
-    h.Set(courant_location, s.courant_cell >= 0 ? mesh.cell_centres()[s.courant_cell]
-                                                : Vector3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    h.Set(courant_location, CourantLocation(mesh, part, s.courant_cell));
     for (std::size_t k = 0; k < force_patches.size(); ++k) {
       const PatchForce f = r.forces.Sum(force_patches[k]);
       h.Set(pressure[k], f.pressure);
@@ -65,10 +79,8 @@ struct CoreColumns {
 
 // The ship_loads group of the output.forces patches about the motion's centre.
 SteadyGroup ShipLoadGroup(const Case& c, const StepForces& forces, double time) {
-  std::vector<const PatchFaceForces*> faces;
-  for (int k : c.force_patches) faces.push_back(&forces.Faces(k));
   const BodyKinematics& body = c.motion->body();
-  const PlanarLoad l = SumHullLoads(*c.mesh, c.force_patches, faces, body.At(time), body.centre()).Total();
+  const PlanarLoad l = forces.ShipLoads(*c.mesh, c.force_patches, body.At(time), body.centre()).Total();
   const double arm = c.settings.time.steady->ship_load_arm > 0.0 ? c.settings.time.steady->ship_load_arm
                                                                  : c.settings.reference.length;
   return ShipLoadGroup(l, arm);
@@ -160,8 +172,17 @@ class Loop {
     }
     return {};
   }
+  // The signal that asked for a stop (0: none). On ranks the launcher
+  // forwards it to each at its own moment: the largest over the ranks, so
+  // that all stop after the same step.
+  int StopRequested() const {
+    const int signal = options_.stop_requested ? options_.stop_requested() : 0;
+    const DomainPart* part = solver_.part();
+    return part && part->parallel() ? static_cast<int>(part->Max(signal)) : signal;
+  }
   void Checkpoint();
   void WriteHistory() const;
+  void WriteHistoryFile() const;
 
   Case& c_;
   PimpleSolver& solver_;
@@ -182,7 +203,7 @@ void Loop::Start() {
   if (restarted) {
     scalars = ReadCheckpointScalars(options_.restart);
     for (Monitor* m : monitors_) m->RestoreScalars(scalars);
-    ReadCheckpoint(options_.restart, solver_);
+    ReadRunCheckpoint(options_.restart, solver_);
   }
   time_control_.Start(solver_, restarted, scalars, c_.settings.reference.velocity());
   if (restarted) {
@@ -203,6 +224,10 @@ void Loop::Start() {
 
 void Loop::WriteHistory() const {
   if (options_.history.empty() || history_.rows() == 0) return;
+  OnFirstRank(solver_.part(), [this] { WriteHistoryFile(); });
+}
+
+void Loop::WriteHistoryFile() const {
   data::H5Writer w(options_.history);
   history_.Write(w);
   const SteadyStatus& st = time_control_.status();
@@ -225,7 +250,7 @@ void Loop::Checkpoint() {
   try {
     CheckpointArrays arrays = time_control_.CheckpointArrays();
     for (Monitor* m : monitors_) m->AddCheckpointArrays(arrays);
-    WriteCheckpoint(options_.checkpoint, solver_, scalars, arrays);
+    WriteRunCheckpoint(options_.checkpoint, solver_, scalars, arrays);
     summary_.last_checkpoint = options_.checkpoint;
     last_checkpoint_step_ = solver_.step();
     WriteHistory();
@@ -244,7 +269,7 @@ RunDriverSummary Loop::Run() {
   const int total_steps = time_control_.StepsToEnd(solver_.time());
   Progress::Options po;
   po.label = options_.label;
-  po.enabled = options_.progress;
+  po.enabled = options_.progress && (!solver_.part() || solver_.part()->rank == 0);
   Progress progress(std::max(total_steps, 1), po);
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
@@ -281,12 +306,12 @@ RunDriverSummary Loop::Run() {
     record.step_cpu_seconds = step_cpu;
     record.last = i + 1 == total_steps || time_control_.settled();
     history_.NewRow();
-    core_.Fill(history_, *c_.mesh, record, c_.force_patches);
+    core_.Fill(history_, *c_.mesh, c_.part.get(), record, c_.force_patches);
     for (Monitor* m : monitors_) m->AfterStep(solver_, record, history_);
     const bool done = std::any_of(monitors_.begin(), monitors_.end(), [](const Monitor* m) { return m->Done(); });
     const bool checkpointed = CheckpointDue(record.last || done);
     if (checkpointed) Checkpoint();
-    if (const int signal = options_.stop_requested ? options_.stop_requested() : 0; signal != 0) {
+    if (const int signal = StopRequested(); signal != 0) {
       if (!checkpointed && !options_.checkpoint.empty()) Checkpoint();
       summary_.status = RunDriverSummary::Status::kInterrupted;
       summary_.message = fmt::format(
@@ -323,7 +348,34 @@ RunDriverSummary Loop::Run() {
 void StepForces::Compute(const PimpleSolver& solver, std::span<const int> patches, double rho, double nu) {
   faces_.clear();
   sums_.clear();
+  part_ = solver.part();
   for (int k : patches) Set(k, ComputePatchFaceForces(solver, k, rho, nu));
+  if (!part_ || !part_->parallel()) return;
+  // One reduction for every patch's sums (the same patches on every rank).
+  std::vector<double> sums;
+  for (const auto& [k, f] : sums_) sums.insert(sums.end(), {f.pressure.x(), f.pressure.y(), f.pressure.z(),
+                                                            f.viscous.x(), f.viscous.y(), f.viscous.z()});
+  part_->SumInPlace(sums);
+  std::size_t i = 0;
+  for (auto& [k, f] : sums_) {
+    f.pressure = Vector3(sums[i], sums[i + 1], sums[i + 2]);
+    f.viscous = Vector3(sums[i + 3], sums[i + 4], sums[i + 5]);
+    i += 6;
+  }
+}
+
+HullLoads StepForces::ShipLoads(const Mesh& mesh, std::span<const int> patches, const Pose& pose,
+                                const Vector3& centre_body) const {
+  std::vector<const PatchFaceForces*> faces;
+  for (int k : patches) faces.push_back(&Faces(k));
+  HullLoads l = SumHullLoads(mesh, patches, faces, pose, centre_body);
+  if (part_ && part_->parallel()) {
+    double v[6] = {l.pressure.X, l.pressure.Y, l.pressure.N, l.viscous.X, l.viscous.Y, l.viscous.N};
+    part_->SumInPlace(v);
+    l.pressure = {v[0], v[1], v[2]};
+    l.viscous = {v[3], v[4], v[5]};
+  }
+  return l;
 }
 
 void StepForces::Set(int patch, PatchFaceForces faces) {

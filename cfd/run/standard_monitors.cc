@@ -5,7 +5,10 @@
 
 #include <set>
 
+#include "cfd/parallel/decompose.h"
+#include "cfd/parallel/state_layout.h"
 #include "cfd/turbulence/turbulence_model.h"
+#include "data/schema/errors.h"
 
 namespace kelvin::cfd {
 
@@ -13,27 +16,87 @@ namespace fs = std::filesystem;
 
 // --- FieldOutput -------------------------------------------------------------
 
-FieldOutput::FieldOutput(const fs::path& directory, int interval)
-    : directory_(directory), interval_(interval), pvd_(directory / "fields.pvd") {}
+FieldOutput::FieldOutput(const fs::path& directory, int interval, const Mesh* whole_mesh)
+    : directory_(directory), interval_(interval), whole_mesh_(whole_mesh), pvd_(directory / "fields.pvd") {}
 
 void FieldOutput::AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) {
   if ((record.last && interval_ >= 0) || (interval_ > 0 && solver.step() % interval_ == 0)) Write(solver);
 }
 
-void FieldOutput::Write(const PimpleSolver& solver) {
+namespace {
+
+bool OnRanks(const PimpleSolver& solver) { return solver.part() && solver.part()->parallel(); }
+
+// Arrays of `components` values per cell (or per boundary face) of the local
+// mesh, as those of the whole mesh, component by component (collective).
+template <typename Gather>
+std::vector<double> Gathered(const std::vector<double>& local, int components, Gather gather) {
+  const std::size_t n = local.size() / components;
+  std::vector<double> out;
+  for (int k = 0; k < components; ++k) {
+    std::vector<double> one(n);
+    for (std::size_t i = 0; i < n; ++i) one[i] = local[i * components + k];
+    const std::vector<double> whole = gather(one);
+    if (out.empty()) out.resize(whole.size() * components);
+    for (std::size_t i = 0; i < whole.size(); ++i) out[i * components + k] = whole[i];
+  }
+  return out;
+}
+
+// The cell fields written: U, p and what the turbulence model adds.
+std::vector<VtuCellData> CellFields(const PimpleSolver& solver) {
   const Mesh& mesh = solver.mesh();
   VtuCellData u{"U", 3, {}}, p{"p", 1, {}};
   for (int i = 0; i < mesh.n_cells(); ++i) {
     for (int k = 0; k < 3; ++k) u.values.push_back(solver.U()[i][k]);
     p.values.push_back(solver.p()[i]);
   }
-  const fs::path file = directory_ / fmt::format("fields_{:06d}.vtu", solver.step());
   std::vector<VtuCellData> cell_data = {u, p};
   if (const TurbulenceModel* t = solver.turbulence()) {
     for (TurbulenceOutput& o : t->CellOutputs()) cell_data.push_back({o.name, o.components, std::move(o.values)});
   }
-  WriteVtu(file, mesh, cell_data);
-  pvd_.Add(solver.time(), file);
+  return cell_data;
+}
+
+// Values on every boundary face: p, U and, under a turbulence model, the
+// wall shear stress and y+ (zero off the walls).
+std::vector<VtuCellData> BoundaryFields(const PimpleSolver& solver) {
+  const int nb = solver.mesh().n_boundary_faces();
+  VtuCellData pf{"p", 1, {}}, uf{"U", 3, {}}, tau{"wallShearStress", 3, {}}, yp{"yPlus", 1, {}};
+  const TurbulenceModel* t = solver.turbulence();
+  for (int b = 0; b < nb; ++b) {
+    pf.values.push_back(solver.p().boundary()[b]);
+    for (int d = 0; d < 3; ++d) uf.values.push_back(solver.U().boundary()[b][d]);
+    if (!t) continue;
+    for (int d = 0; d < 3; ++d) tau.values.push_back(t->wall_shear_stress()[b][d]);
+    yp.values.push_back(t->y_plus()[b]);
+  }
+  std::vector<VtuCellData> out = {std::move(pf), std::move(uf)};
+  if (t) {
+    out.push_back(std::move(tau));
+    out.push_back(std::move(yp));
+  }
+  return out;
+}
+
+}  // namespace
+
+void FieldOutput::Write(const PimpleSolver& solver) {
+  // On ranks every field is gathered into the whole mesh's order and rank 0
+  // writes the files of the whole mesh, as a serial run would.
+  const bool ranks = OnRanks(solver);
+  std::vector<VtuCellData> cell_data = CellFields(solver);
+  std::vector<VtuCellData> boundary = BoundaryFields(solver);
+  if (ranks) {
+    const DomainPart& part = *solver.part();
+    for (VtuCellData& d : cell_data) {
+      d.values = Gathered(d.values, d.components, [&](const std::vector<double>& v) { return GatherCells(part, v); });
+    }
+    for (VtuCellData& d : boundary) {
+      d.values = Gathered(d.values, d.components,
+                          [&](const std::vector<double>& v) { return GatherBoundaryFaces(part, solver.mesh(), v); });
+    }
+  }
   // Surface files, each in a series of its own: the patches whose conditions
   // have their own unknowns (eta), and the turbulence model's walls, with
   // their wall shear stress and first-cell y+ (where the friction comes
@@ -43,33 +106,32 @@ void FieldOutput::Write(const PimpleSolver& solver) {
   if (t) {
     for (const WallPatchStats& w : t->WallStats()) walls.insert(w.patch);
   }
-  const int ni = mesh.n_internal_faces();
-  for (int k = 0; k < solver.p().n_patches(); ++k) {
-    const Patch& patch = mesh.patches()[k];
-    auto fields = solver.p().bc(k).FaceFields();
-    const bool wall = walls.count(patch.name) > 0;
-    if (fields.empty() && !wall) continue;
-    std::vector<VtuCellData> data;
-    for (auto& [name, values] : fields) data.push_back({name, 1, std::move(values)});
-    VtuCellData pf{"p", 1, {}}, uf{"U", 3, {}}, tau{"wallShearStress", 3, {}}, yp{"yPlus", 1, {}};
-    for (int f = patch.start; f < patch.start + patch.size; ++f) {
-      pf.values.push_back(solver.p().boundary()[f - ni]);
-      for (int d = 0; d < 3; ++d) uf.values.push_back(solver.U().boundary()[f - ni][d]);
-      if (!wall) continue;
-      for (int d = 0; d < 3; ++d) tau.values.push_back(t->wall_shear_stress()[f - ni][d]);
-      yp.values.push_back(t->y_plus()[f - ni]);
+  OnFirstRank(solver.part(), [&] {
+    KELVIN_CHECK(!ranks || whole_mesh_, "rank 0 of a run on ranks holds the whole mesh");
+    const Mesh& mesh = ranks ? *whole_mesh_ : solver.mesh();
+    const fs::path file = directory_ / fmt::format("fields_{:06d}.vtu", solver.step());
+    WriteVtu(file, mesh, cell_data);
+    pvd_.Add(solver.time(), file);
+    const int ni = mesh.n_internal_faces();
+    for (int k = 0; k < static_cast<int>(mesh.patches().size()); ++k) {
+      const Patch& patch = mesh.patches()[k];
+      // A linearized free surface (its eta) never runs on ranks.
+      auto fields = solver.p().bc(k).FaceFields();
+      const bool wall = walls.count(patch.name) > 0;
+      if (fields.empty() && !wall) continue;
+      std::vector<VtuCellData> data;
+      for (auto& [name, values] : fields) data.push_back({name, 1, std::move(values)});
+      for (std::size_t j = 0; j < (wall ? boundary.size() : 2); ++j) {
+        const VtuCellData& b = boundary[j];
+        const auto first = b.values.begin() + static_cast<long>(patch.start - ni) * b.components;
+        data.push_back({b.name, b.components, std::vector<double>(first, first + patch.size * b.components)});
+      }
+      const fs::path surface_file = directory_ / fmt::format("{}_{:06d}.vtp", patch.name, solver.step());
+      WritePatchVtp(surface_file, mesh, patch, data);
+      auto [series, inserted] = surfaces_.try_emplace(patch.name, directory_ / (patch.name + ".pvd"));
+      series->second.Add(solver.time(), surface_file);
     }
-    data.push_back(std::move(pf));
-    data.push_back(std::move(uf));
-    if (wall) {
-      data.push_back(std::move(tau));
-      data.push_back(std::move(yp));
-    }
-    const fs::path surface_file = directory_ / fmt::format("{}_{:06d}.vtp", patch.name, solver.step());
-    WritePatchVtp(surface_file, mesh, patch, data);
-    auto [series, inserted] = surfaces_.try_emplace(patch.name, directory_ / (patch.name + ".pvd"));
-    series->second.Add(solver.time(), surface_file);
-  }
+  });
 }
 
 // --- TurbulenceReport --------------------------------------------------------

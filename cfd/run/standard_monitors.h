@@ -24,13 +24,16 @@ namespace kelvin::cfd {
 
 class FieldOutput final : public Monitor {
  public:
-  FieldOutput(const std::filesystem::path& directory, int interval);
+  // `whole_mesh`: on MPI ranks, the undecomposed mesh the fields are gathered
+  // to (rank 0's; null on the others, which write nothing).
+  FieldOutput(const std::filesystem::path& directory, int interval, const Mesh* whole_mesh = nullptr);
   void AfterStep(const PimpleSolver& solver, const StepRecord& record, History& history) override;
 
  private:
   void Write(const PimpleSolver& solver);
   std::filesystem::path directory_;
   int interval_;
+  const Mesh* whole_mesh_;
   PvdSeries pvd_;
   std::map<std::string, PvdSeries> surfaces_;
 };

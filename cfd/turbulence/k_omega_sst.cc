@@ -372,9 +372,15 @@ std::vector<WallPatchStats> KOmegaSst::WallStats() const {
   for (std::size_t p = 0; p < roles_.size(); ++p) {
     if (roles_[p] != TurbulencePatchRole::kWall) continue;
     const Patch& patch = mesh_.patches()[p];
-    const auto n = static_cast<std::size_t>(patch.size);
-    out.push_back(SummarizeWall(patch.name, std::span<const double>(y_plus_).subspan(static_cast<std::size_t>(patch.start - ni), n),
-                                std::span<const double>(mesh_.face_area_magnitudes()).subspan(static_cast<std::size_t>(patch.start), n)));
+    std::vector<double> y_plus(y_plus_.begin() + (patch.start - ni), y_plus_.begin() + (patch.start - ni + patch.size));
+    std::vector<double> area(mesh_.face_area_magnitudes().begin() + patch.start,
+                             mesh_.face_area_magnitudes().begin() + patch.start + patch.size);
+    if (part_ && part_->parallel()) {
+      // The patch's faces of every rank (each wall face is one rank's own).
+      y_plus = AllGather(*part_, y_plus);
+      area = AllGather(*part_, area);
+    }
+    out.push_back(SummarizeWall(patch.name, y_plus, area));
   }
   return out;
 }

@@ -4,8 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 
+#include "data/schema/h5_file.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace {
@@ -48,20 +52,57 @@ TEST(KelvinCliTest, HelpForUnknownCommandExitsTwo) {
   EXPECT_THAT(r.output, HasSubstr("unknown command 'frobnicate'"));
 }
 
-// Under an MPI launcher every rank would run the whole case and write the
-// same files: one clear error instead (issue 23, until the commands decompose).
-TEST(KelvinCliTest, MpiLauncherIsRefusedWithOneLine) {
-  const std::string cavity = (kelvin::testing::SourceDir() / "data/cases/cavity_re100.yaml").string();
+// Under an MPI launcher only `kelvin run` decomposes its case; every rank of
+// another command would do the whole work and write the same files: one
+// clear error instead (issue 23).
+TEST(KelvinCliTest, MpiLauncherIsRefusedForCommandsThatDoNotDecompose) {
+  const std::string campaign = (kelvin::testing::SourceDir() / "data/cases/captive_cfd/block2d_campaign.yaml").string();
   for (const char* env : {"OMPI_COMM_WORLD_SIZE=2", "PMI_SIZE=4"}) {
-    const auto r = RunCommand(std::string("env ") + env + " " + Kelvin() + " run " + cavity);
+    const auto r = RunCommand(std::string("env ") + env + " " + Kelvin() + " captive " + campaign);
     EXPECT_EQ(r.exit_code, 2) << env;
     EXPECT_EQ(CountLines(r.output), 1) << r.output;
-    EXPECT_THAT(r.output, HasSubstr("started by an MPI launcher on"));
-    EXPECT_THAT(r.output, HasSubstr("expected one process"));
+    EXPECT_THAT(r.output, HasSubstr("kelvin captive was started by an MPI launcher on"));
+    EXPECT_THAT(r.output, HasSubstr("only 'kelvin run' runs on MPI ranks"));
   }
   // A launcher's single rank is a serial run.
   const auto one = RunCommand("env OMPI_COMM_WORLD_SIZE=1 " + Kelvin() + " --version");
   EXPECT_EQ(one.exit_code, 0) << one.output;
+}
+
+// `kelvin run --np 2` starts itself under mpiexec: the cavity on 2 ranks
+// with the case's own tolerances ends with the serial lid force within
+// 0.05% (issue 23 acceptance 1), and rank 0 alone reports.
+TEST(KelvinCliTest, RunOnTwoRanksMatchesTheSerialRun) {
+  kelvin::testing::ScopedTempDir tmp;
+  const std::string cavity = (kelvin::testing::SourceDir() / "data/cases/cavity_re100.yaml").string();
+  const auto serial = RunCommand(Kelvin() + " run --no-progress " + cavity + " -o " + (tmp / "serial").string());
+  ASSERT_EQ(serial.exit_code, 0) << serial.output;
+  const auto ranks =
+      RunCommand(Kelvin() + " run --np 2 --no-progress " + cavity + " -o " + (tmp / "ranks").string());
+  ASSERT_EQ(ranks.exit_code, 0) << ranks.output;
+  EXPECT_THAT(ranks.output, HasSubstr("decomposed over 2 MPI ranks: 4096 cells"));
+  const std::string completed = "completed 100 steps";
+  const auto first = ranks.output.find(completed);
+  ASSERT_NE(first, std::string::npos) << ranks.output;
+  EXPECT_EQ(ranks.output.find(completed, first + 1), std::string::npos) << "reported once: " << ranks.output;
+  const auto lid = [](const std::filesystem::path& history) {
+    const auto v = kelvin::data::H5Reader(history).Read("forces/ymax/viscous").values;
+    return v[v.size() - 3];  // x of the last step
+  };
+  const double a = lid(tmp / "serial/history.h5"), b = lid(tmp / "ranks/history.h5");
+  std::printf("cavity lid force: serial %.8g N, 2 ranks %.8g N (relative difference %.2e)\n", a, b,
+              std::abs(b - a) / std::abs(a));
+  EXPECT_NEAR(b, a, 5e-4 * std::abs(a));
+  EXPECT_TRUE(std::filesystem::exists(tmp / "ranks/checkpoint.h5"));
+}
+
+// `--np` without a launcher on PATH: one clear error naming what is missing.
+TEST(KelvinCliTest, NpWithoutALauncherIsOneError) {
+  const std::string cavity = (kelvin::testing::SourceDir() / "data/cases/cavity_re100.yaml").string();
+  const auto r = RunCommand("env PATH=/nonexistent " + Kelvin() + " run --np 2 " + cavity);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(CountLines(r.output), 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--np 2: no MPI launcher 'mpiexec' on PATH"));
 }
 
 TEST(KelvinCliTest, HelpListsCommands) {

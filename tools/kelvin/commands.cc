@@ -1,5 +1,10 @@
 #include "tools/kelvin/commands.h"
 
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <string>
+
 namespace kelvin::cli {
 
 std::vector<Command> AddCommands(CLI::App& app) {
@@ -23,6 +28,18 @@ std::filesystem::path SelfExecutable() {
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::filesystem::path() : self;
+}
+
+int LauncherRanks() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
+    if (const char* v = std::getenv(name)) {
+      try {
+        return std::max(1, std::stoi(v));
+      } catch (const std::exception&) {
+      }
+    }
+  }
+  return 1;
 }
 
 }  // namespace kelvin::cli

@@ -34,4 +34,8 @@ std::vector<Command> AddCommands(CLI::App& app);
 // campaigns start as worker processes.
 std::filesystem::path SelfExecutable();
 
+// Ranks an MPI launcher started this process among (Open MPI's and the PMI
+// variables), 1 without one.
+int LauncherRanks();
+
 }  // namespace kelvin::cli

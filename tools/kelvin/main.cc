@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -18,22 +17,6 @@
 #define KELVIN_VERSION "unknown"
 #endif
 
-namespace {
-
-// Ranks an MPI launcher started (Open MPI's and the PMI variables), 1 without one.
-int LauncherRanks() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
-    if (const char* v = std::getenv(name)) {
-      try {
-        return std::max(1, std::stoi(v));
-      } catch (const std::exception&) {
-      }
-    }
-  }
-  return 1;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"kelvin: linearized free-surface CFD, MMG identification and real-time maneuvering", "kelvin"};
@@ -82,14 +65,17 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  // Every rank would run the whole case and write the same files: refuse.
-  if (const int ranks = LauncherRanks(); ranks > 1) {
-    std::fprintf(stderr,
-                 "kelvin: error: started by an MPI launcher on %d ranks; the kelvin commands do not run decomposed "
-                 "yet (the CFD solver does, through its library: cfd/README.md 'MPI ranks'); expected one process "
-                 "(start kelvin without mpirun)\n",
-                 ranks);
-    return 2;
+  // Under an MPI launcher only `kelvin run` decomposes its case; every rank
+  // of any other command would do the whole work and write the same files.
+  if (const int ranks = kelvin::cli::LauncherRanks(); ranks > 1) {
+    for (CLI::App* sub : app.get_subcommands()) {
+      if (sub->get_name() == "run") continue;
+      std::fprintf(stderr,
+                   "kelvin: error: kelvin %s was started by an MPI launcher on %d ranks; only 'kelvin run' runs on MPI "
+                   "ranks (cfd/README.md 'MPI ranks'); expected one process (start it without mpirun)\n",
+                   sub->get_name().c_str(), ranks);
+      return 2;
+    }
   }
   kelvin::InitLogging(quiet ? kelvin::Verbosity::kQuiet
                             : (verbose ? kelvin::Verbosity::kVerbose : kelvin::Verbosity::kNormal));

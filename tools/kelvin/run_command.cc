@@ -1,14 +1,22 @@
 // `kelvin run case.yaml`: runs a CFD case file (see cfd/run/run_case.h).
 #include <fmt/format.h>
 
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "cfd/campaign/maneuver_campaign.h"
+#include "cfd/parallel/petsc_context.h"
 #include "cfd/run/run_case.h"
 #include "data/schema/errors.h"
 #include "tools/kelvin/commands.h"
@@ -65,6 +73,42 @@ void RunManeuvers(const std::string& case_file, const std::vector<std::string>& 
   }
 }
 
+// `--np N`: this command again under `mpiexec -n N` (replaces the process).
+[[noreturn]] void RelaunchOnRanks(int np, const std::vector<std::string>& run_args) {
+  std::filesystem::path launcher;
+  if (const char* path = std::getenv("PATH")) {
+    const std::string dirs = path;
+    for (std::size_t start = 0; start <= dirs.size();) {
+      const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+      const std::filesystem::path candidate = std::filesystem::path(dirs.substr(start, end - start)) / "mpiexec";
+      if (end > start && access(candidate.c_str(), X_OK) == 0) {
+        launcher = candidate;
+        break;
+      }
+      start = end + 1;
+    }
+  }
+  if (launcher.empty()) {
+    throw ArgumentError(fmt::format("--np {}: no MPI launcher 'mpiexec' on PATH; expected Open MPI's (Debian package "
+                                    "openmpi-bin, which tools/setup installs), or start kelvin under your cluster's "
+                                    "launcher yourself",
+                                    np));
+  }
+  std::vector<std::string> argv = {launcher.string(), "-n", std::to_string(np), SelfExecutable().string(), "run"};
+  argv.insert(argv.end(), run_args.begin(), run_args.end());
+  // Open MPI refuses root unless told; the user asked for the ranks.
+  if (geteuid() == 0) {
+    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
+    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
+  }
+  std::vector<char*> c_argv;
+  for (std::string& a : argv) c_argv.push_back(a.data());
+  c_argv.push_back(nullptr);
+  std::fflush(nullptr);
+  execv(launcher.c_str(), c_argv.data());
+  throw ArgumentError(fmt::format("--np {}: could not start {}: {}", np, launcher.string(), std::strerror(errno)));
+}
+
 }  // namespace
 
 Command AddRunCommand(CLI::App& app) {
@@ -74,6 +118,7 @@ Command AddRunCommand(CLI::App& app) {
     std::string output;
     std::vector<std::string> maneuvers;
     int jobs = 1;
+    int np = 0;
     bool no_progress = false;
   };
   auto args = std::make_shared<Args>();
@@ -86,13 +131,45 @@ Command AddRunCommand(CLI::App& app) {
                   "each in <output>/<maneuver>/, resumed from its checkpoint and skipped once finished");
   sub->add_option("-j,--jobs", args->jobs, "With -m: maneuvers at the same time (default 1)");
   sub->add_flag("--no-progress", args->no_progress, "No progress line");
+  sub->add_option("--np", args->np,
+                  "Run on N MPI ranks: starts itself under mpiexec -n N (the same as 'mpiexec -n N kelvin run ...'; "
+                  "on a cluster use its launcher instead)")
+      ->check(CLI::Range(1, 1 << 20));
   Command cmd;
   cmd.app = sub;
   cmd.run = [args]() {
+    const int launched = LauncherRanks();
+    if (args->np > 1 && launched == 1) {
+      if (!args->maneuvers.empty()) {
+        throw ArgumentError(fmt::format("--np {}: not with -m (the maneuvers run as separate processes: --jobs)",
+                                        args->np));
+      }
+      std::vector<std::string> run_args = {args->case_file};
+      if (!args->restart.empty()) run_args.insert(run_args.end(), {"--restart", args->restart});
+      if (!args->output.empty()) run_args.insert(run_args.end(), {"-o", args->output});
+      if (args->no_progress) run_args.push_back("--no-progress");
+      RelaunchOnRanks(args->np, run_args);
+    }
     cfd::RunOptions options;
     options.restart = args->restart;
     options.output_override = args->output;
     options.progress = !args->no_progress;
+    // Under a launcher the case is decomposed over its ranks; rank 0 reports.
+    int rank = 0;
+    if (launched > 1) {
+      if (!args->maneuvers.empty()) {
+        throw ArgumentError(fmt::format("-m: the maneuvers of -m run as separate processes (--jobs), not on the {} "
+                                        "MPI ranks of this launch; expected one process",
+                                        launched));
+      }
+      cfd::EnsurePetsc();
+      options.ranks = MPI_COMM_WORLD;
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      if (rank != 0) {
+        spdlog::set_level(spdlog::level::err);
+        options.progress = false;
+      }
+    }
     options.stop_requested = [] { return static_cast<int>(g_stop_signal); };
     const StopSignals signals;
     if (!args->maneuvers.empty()) {
@@ -107,14 +184,14 @@ Command AddRunCommand(CLI::App& app) {
     if (args->jobs != 1) throw ArgumentError(fmt::format("--jobs {}: only with -m (several maneuvers)", args->jobs));
     const cfd::RunSummary s = cfd::RunCase(args->case_file, options);
     if (s.status == cfd::RunSummary::Status::kDiverged) {
-      std::fprintf(stderr, "kelvin: run %s\n", s.message.c_str());
+      if (rank == 0) std::fprintf(stderr, "kelvin: run %s\n", s.message.c_str());
       std::exit(3);
     }
     if (s.status == cfd::RunSummary::Status::kInterrupted) {
-      std::fprintf(stderr, "kelvin: run %s\n", s.message.c_str());
+      if (rank == 0) std::fprintf(stderr, "kelvin: run %s\n", s.message.c_str());
       std::exit(128 + static_cast<int>(g_stop_signal));  // the shell's convention for a signal
     }
-    std::printf("%s\n", s.message.c_str());
+    if (rank == 0) std::printf("%s\n", s.message.c_str());
   };
   return cmd;
 }
