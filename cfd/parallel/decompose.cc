@@ -40,6 +40,37 @@ Ownership Owners(std::span<const int> cell_rank, int size) {
   return o;
 }
 
+// The faces between ranks (DomainPart::cross_roots, cross_leaves): a face's
+// root is on the rank of its whole-mesh owner cell, numbered there in
+// ascending whole-mesh face order, which every rank can count from the
+// partition alone.
+void CrossFaces(const Mesh& mesh, std::span<const int> cell_rank, int n_local_internal, DomainPart& part) {
+  const auto owner = mesh.owner();
+  const auto neighbour = mesh.neighbour();
+  std::vector<int> counter(part.size, 0);
+  std::vector<int> root_index(mesh.n_internal_faces(), -1);
+  for (int g = 0; g < mesh.n_internal_faces(); ++g) {
+    const int rp = cell_rank[owner[g]];
+    if (rp != cell_rank[neighbour[g]]) root_index[g] = counter[rp]++;
+  }
+  part.cross_roots.assign(counter[part.rank], -1);
+  std::vector<GhostSource> leaf_sources;
+  for (int f = 0; f < n_local_internal; ++f) {
+    const long long g = part.faces[f];
+    if (root_index[g] < 0) continue;  // within one rank
+    if (cell_rank[owner[g]] == part.rank) {
+      KELVIN_CHECK(part.face_signs[f] > 0, "a face from an owned cell keeps its orientation");
+      part.cross_roots[root_index[g]] = f;
+    } else {
+      KELVIN_CHECK(cell_rank[neighbour[g]] == part.rank && part.face_signs[f] < 0, "a leaf face is turned");
+      part.cross_leaves.push_back(f);
+      leaf_sources.push_back({cell_rank[owner[g]], root_index[g]});
+    }
+  }
+  for (int f : part.cross_roots) KELVIN_CHECK(f >= 0, "every root face of the rank is a local face");
+  part.cross_halo = std::make_shared<PetscHalo>(part.comm, static_cast<int>(part.cross_roots.size()), leaf_sources);
+}
+
 }  // namespace
 
 LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm comm) {
@@ -173,6 +204,7 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
     part->rows[i] = own.first_row[cell_rank[c]] + own.index_in_rank[c];
   }
   part->halo = std::make_shared<PetscHalo>(comm, part->n_owned, sources);
+  CrossFaces(mesh, cell_rank, out.mesh->n_internal_faces(), *part);
   out.part = std::move(part);
   return out;
 }

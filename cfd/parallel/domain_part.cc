@@ -38,6 +38,15 @@ std::vector<double> AllGather(const DomainPart& part, std::span<const double> lo
   return all;
 }
 
+void SyncCrossFaces(const DomainPart* part, std::span<double> face_values) {
+  if (!part || !part->parallel()) return;
+  const std::size_t roots = part->cross_roots.size();
+  std::vector<double> buffer(roots + part->cross_leaves.size());
+  for (std::size_t r = 0; r < roots; ++r) buffer[r] = face_values[part->cross_roots[r]];
+  part->cross_halo->Update(std::span<double>(buffer));
+  for (std::size_t l = 0; l < part->cross_leaves.size(); ++l) face_values[part->cross_leaves[l]] = -buffer[roots + l];
+}
+
 void OnFirstRank(const DomainPart* part, const std::function<void()>& write) {
   if (!part || !part->parallel()) {
     write();

@@ -56,6 +56,13 @@ struct DomainPart {
   std::vector<long long> faces;
   std::vector<signed char> face_signs;
   std::shared_ptr<const HaloExchange> halo;
+  // Faces between an owned and a ghost cell exist on both ranks, each
+  // computing its flux from its own orientation. The rank that owns the
+  // face's owner cell in the whole mesh holds the face's value (`cross_roots`,
+  // local faces in ascending whole-mesh order); the other rank's copy
+  // (`cross_leaves`) is overwritten with it, negated (SyncCrossFaces).
+  std::vector<int> cross_roots, cross_leaves;
+  std::shared_ptr<const HaloExchange> cross_halo;
 
   bool parallel() const { return size > 1; }
   // Collective reductions over the ranks (the value itself when serial).
@@ -89,6 +96,13 @@ std::vector<double> AllGather(const DomainPart& part, std::span<const double> lo
 // on every rank as a DataFileError with its message, so all stop alike
 // (collective). Serially it runs `write` as it is.
 void OnFirstRank(const DomainPart* part, const std::function<void()>& write);
+
+// Gives the faces between ranks one value: each leaf copy of a face flux
+// (local orientation against the whole mesh's) becomes minus the root's
+// (collective; nothing when serial). Both ranks then balance their cells with
+// the same flux, and a checkpoint in the whole mesh's layout restarts bit for
+// bit.
+void SyncCrossFaces(const DomainPart* part, std::span<double> face_values);
 
 // Cells whose rows this rank solves: n_owned of a parallel part, else all.
 inline int OwnedCells(const DomainPart* part, const Mesh& mesh) {

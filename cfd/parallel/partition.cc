@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 #include <petscmat.h>
+#include <ptscotch.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numeric>
 #include <stdexcept>
 
@@ -100,6 +102,12 @@ std::vector<int> PartitionGraphOnOneProcess(const ColumnGraph& g, int n_parts, d
   Check(MatPartitioningPTScotchSetImbalance(part, imbalance), "MatPartitioningPTScotchSetImbalance");
   Check(MatPartitioningSetVertexWeights(part, vertex), "MatPartitioningSetVertexWeights");
   IS is = nullptr;
+  // Threaded PT-Scotch cuts the same graph differently from run to run, and
+  // its random generator runs on from one partition to the next: one thread
+  // and a reset generator make the partition, and with it every run on ranks,
+  // reproducible.
+  setenv("SCOTCH_PTHREAD_NUMBER", "1", 1);
+  SCOTCH_randomReset();
   Check(MatPartitioningApply(part, &is), "MatPartitioningApply");
   const PetscInt* idx = nullptr;
   Check(ISGetIndices(is, &idx), "ISGetIndices");

@@ -142,6 +142,7 @@ void PimpleSolver::MoveMesh(bool carry_old_fluxes) {
       const int P = mesh_.owner()[f], N = mesh_.neighbour()[f];
       phi_old_[l][f] += (w[f] * u_old[P] + (1.0 - w[f]) * u_old[N]).dot(dS);
     }
+    SyncCrossFaces(part_.get(), phi_old_[l]);
   }
 }
 
@@ -164,6 +165,7 @@ void PimpleSolver::Initialize() {
     phi_[f] = (w[f] * (*U_)[mesh_.owner()[f]] + (1.0 - w[f]) * (*U_)[mesh_.neighbour()[f]]).dot(sf[f]);
   }
   for (int f = ni; f < mesh_.n_faces(); ++f) phi_[f] = U_->boundary()[f - ni].dot(sf[f]);
+  SyncCrossFaces(part_.get(), phi_);
   U_->CorrectBoundary(time_, RelativeFlux());
   p_->CorrectBoundary(time_, RelativeFlux());
   if (turbulence_) turbulence_->Initialize(*U_, RelativeFlux());
@@ -376,6 +378,7 @@ void PimpleSolver::SolvePressure(std::span<const double> rAUf, std::span<const d
   if (non_orth_correction_) {
     for (int f = 0; f < ni; ++f) phi_[f] -= face_corr[f];
   }
+  SyncCrossFaces(part_.get(), phi_);
 }
 
 double PimpleSolver::ContinuityError(double* global) const {
