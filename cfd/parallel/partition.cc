@@ -131,18 +131,6 @@ std::vector<int> PartitionGraph(const ColumnGraph& g, int n_parts, MPI_Comm comm
 
 }  // namespace
 
-void PartitionOptions::Validate() const {
-  if (!(column_aspect >= 1.0) || !std::isfinite(column_aspect)) {
-    throw ConfigError(fmt::format("partition.column_aspect = {}; expected a number >= 1", column_aspect));
-  }
-  if (!(imbalance > 0.0 && imbalance < 1.0)) {
-    throw ConfigError(fmt::format("partition.imbalance = {}; expected in (0, 1)", imbalance));
-  }
-  if (min_cells_per_rank < 1) {
-    throw ConfigError(fmt::format("partition.min_cells_per_rank = {}; expected at least 1", min_cells_per_rank));
-  }
-}
-
 int PrismColumns(const Mesh& mesh, double column_aspect, std::vector<int>& column) {
   const int nc = mesh.n_cells();
   std::vector<int> parent(nc);
