@@ -99,7 +99,9 @@ class BoundaryCondition {
   // must refresh the four coefficients if it changes them.
   virtual void PreparePressureSolve(const BcContext&, const PressureCoupling&) {}
   // Named per-face fields of the condition's own unknowns (e.g. eta), for
-  // patch output.
+  // patch output. Like State(), over the whole patch of the undecomposed
+  // mesh on every MPI rank (cfd/parallel/state_layout.h passes both as they
+  // are).
   virtual std::vector<std::pair<std::string, std::vector<double>>> FaceFields() const { return {}; }
   // Extra per-face state (e.g. eta) for checkpoints.
   virtual std::vector<double> State() const { return {}; }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
 
 #include "data/schema/errors.h"
 
@@ -39,21 +40,61 @@ void LinearizedFreeSurfaceOptions::Validate() const {
   }
 }
 
+namespace {
+
+// The surface face (index in the whole patch) of each face of the patch in
+// the rank's mesh: its face in the undecomposed mesh less the patch start
+// there. Every face of the whole patch is one rank's own (the free surface
+// bounds owned cells only), which the gather of the faces checks.
+std::vector<int> SurfaceFaces(const Mesh& mesh, int patch_index, const FreeSurfaceOnRanks& ranks) {
+  const Patch& patch = mesh.patches()[patch_index];
+  std::vector<int> faces(static_cast<std::size_t>(patch.size));
+  if (!ranks.part || !ranks.part->parallel()) {
+    std::iota(faces.begin(), faces.end(), 0);
+    return faces;
+  }
+  KELVIN_CHECK(ranks.whole && ranks.whole->patches()[patch_index].name == patch.name,
+               "the free-surface patch has the same index in the whole mesh");
+  const Patch& whole = ranks.whole->patches()[patch_index];
+  for (int i = 0; i < patch.size; ++i) {
+    const long long g = ranks.part->faces[static_cast<std::size_t>(patch.start + i)] - whole.start;
+    KELVIN_CHECK(g >= 0 && g < whole.size, "a free-surface face of the rank inside the whole patch");
+    faces[static_cast<std::size_t>(i)] = static_cast<int>(g);
+  }
+  return faces;
+}
+
+}  // namespace
+
 LinearizedFreeSurface::LinearizedFreeSurface(const Mesh& mesh, int patch_index,
-                                             LinearizedFreeSurfaceOptions options)
+                                             LinearizedFreeSurfaceOptions options, FreeSurfaceOnRanks ranks)
     : Mixed<double>(0.0, 0.0, 1.0),
       mesh_(mesh),
       patch_index_(patch_index),
       options_(std::move(options)),
-      surface_(mesh, patch_index) {
+      surface_(ranks.whole && ranks.part && ranks.part->parallel() ? *ranks.whole : mesh, patch_index),
+      surface_face_(SurfaceFaces(mesh, patch_index, ranks)) {
   options_.Validate();
   const int n = surface_.size();
   eta_.assign(n, 0.0);
   eta_star_.assign(n, 0.0);
   dt_eff_.assign(n, 0.0);
-  ref_value().assign(n, 0.0);
-  ref_gradient().assign(n, 0.0);
-  fraction().assign(n, 1.0);
+  const std::size_t own = surface_face_.size();
+  ref_value().assign(own, 0.0);
+  ref_gradient().assign(own, 0.0);
+  fraction().assign(own, 1.0);
+  if (ranks.part && ranks.part->parallel()) {
+    part_ = ranks.part;
+    const std::vector<double> mine(surface_face_.begin(), surface_face_.end());
+    const std::vector<double> all = AllGather(*part_, mine);
+    std::vector<int> seen(static_cast<std::size_t>(n), 0);
+    for (double g : all) {
+      gathered_faces_.push_back(static_cast<int>(g));
+      ++seen[static_cast<std::size_t>(g)];
+    }
+    KELVIN_CHECK(std::all_of(seen.begin(), seen.end(), [](int k) { return k == 1; }),
+                 "every free-surface face is on exactly one rank");
+  }
 
   extrapolate_rim_.assign(surface_.edges().size(), 0);
   for (const std::string& name : options_.waterline_patches) {
@@ -130,9 +171,10 @@ void LinearizedFreeSurface::Update(const BcContext& ctx, std::span<const double>
   // during one it keeps the Robin coefficients the pressure equation used,
   // so the flux computed from them is the one eta is updated from.
   if (!armed_) {
-    for (int i = 0; i < surface_.size(); ++i) {
+    for (std::size_t i = 0; i < surface_face_.size(); ++i) {
+      const int s = surface_face_[i];
       fraction()[i] = rigid_lid_ ? 0.0 : 1.0;
-      ref_value()[i] = options_.g * eta_[i] + SurfacePressure(i, ctx.time);
+      ref_value()[i] = options_.g * eta_[s] + SurfacePressure(s, ctx.time);
       ref_gradient()[i] = 0.0;
     }
   }
@@ -143,13 +185,13 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
                                                  const PressureCoupling& coupling) {
   AdvanceTime(ctx.time);
   KELVIN_CHECK(coupling.dt > 0.0, "positive time step");
-  const int n = surface_.size();
   const Patch& patch = mesh_.patches()[patch_index_];
+  const std::size_t own = surface_face_.size();
   if (rigid_lid_) {
     // Zero flux: the normal pressure gradient balances the predicted flux,
     // F_f = F_HbyA,f - rAU_f |S_f| dp/dn = 0.
-    for (int i = 0; i < n; ++i) {
-      const int f = patch.start + i;
+    for (std::size_t i = 0; i < own; ++i) {
+      const int f = patch.start + static_cast<int>(i);
       fraction()[i] = 0.0;
       ref_gradient()[i] = coupling.flux_HbyA[f] / (coupling.rAUf[f] * mesh_.face_area_magnitudes()[f]);
     }
@@ -158,15 +200,40 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
     return;
   }
   const double t = ctx.time;
-  const double dt = coupling.dt;
   const bool bdf2 = coupling.backward && eta_old_.size() >= 2;
+  // Every rank assembles the whole surface (the lagged parts read eta
+  // across the partition) and keeps eta*_f and dt'_f of every face.
+  std::vector<double>& known = eta_star_;
+  std::vector<double> diag;
+  AssembleKinematic(t, coupling.dt, bdf2, known, diag);
+  for (int s = 0; s < surface_.size(); ++s) {
+    KELVIN_CHECK(diag[s] > 0.0, "positive free-surface diagonal");
+    dt_eff_[s] = 1.0 / diag[s];
+    eta_star_[s] = dt_eff_[s] * known[s];
+  }
+  // The Robin condition of the faces in this mesh.
+  for (std::size_t i = 0; i < own; ++i) {
+    const int s = surface_face_[i];
+    const int f = patch.start + static_cast<int>(i);
+    const double mag = mesh_.face_area_magnitudes()[f];
+    ref_gradient()[i] = 0.0;
+    const double D = coupling.rAUf[f] * mag * DeltaCoeff(mesh_, f);
+    const double c = options_.g * dt_eff_[s] * D / mag;
+    fraction()[i] = 1.0 / (1.0 + c);
+    ref_value()[i] = options_.g * (eta_star_[s] + dt_eff_[s] * coupling.flux_HbyA[f] / mag) + SurfacePressure(s, t);
+  }
+  armed_ = true;
+  Mixed<double>::Update(ctx, {});
+}
+
+void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, std::vector<double>& known,
+                                              std::vector<double>& diag) {
+  const int n = surface_.size();
   const double a_t = bdf2 ? 1.5 : 1.0;
   const std::vector<double>& eta0 = eta_old_.empty() ? eta_ : eta_old_[0];
-
-  // eta_star_ first collects the known part per unit time: the old
-  // levels ...
-  std::vector<double>& known = eta_star_;
-  std::vector<double> diag(n);
+  known.assign(n, 0.0);
+  diag.assign(n, 0.0);
+  // The known part per unit time: the old levels ...
   for (int i = 0; i < n; ++i) {
     known[i] = bdf2 ? (2.0 * eta0[i] - 0.5 * eta_old_[1][i]) / dt : eta0[i] / dt;
     diag[i] = a_t / dt + mu_[i];
@@ -276,21 +343,6 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
       diag[i] += rate - a_t / dt;
     }
   }
-  for (int i = 0; i < n; ++i) {
-    const int f = patch.start + i;
-    const double mag = mesh_.face_area_magnitudes()[f];
-    ref_gradient()[i] = 0.0;
-    KELVIN_CHECK(diag[i] > 0.0, "positive free-surface diagonal");
-    dt_eff_[i] = 1.0 / diag[i];
-    eta_star_[i] = dt_eff_[i] * known[i];
-    const double D = coupling.rAUf[f] * mag * DeltaCoeff(mesh_, f);
-    const double c = options_.g * dt_eff_[i] * D / mag;
-    fraction()[i] = 1.0 / (1.0 + c);
-    ref_value()[i] = options_.g * (eta_star_[i] + dt_eff_[i] * coupling.flux_HbyA[f] / mag) +
-                     SurfacePressure(i, t);
-  }
-  armed_ = true;
-  Mixed<double>::Update(ctx, {});
 }
 
 void LinearizedFreeSurface::CorrectAfterFlux(const BcContext&, std::span<const double> face_flux) {
@@ -300,9 +352,18 @@ void LinearizedFreeSurface::CorrectAfterFlux(const BcContext&, std::span<const d
     return;
   }
   const Patch& patch = mesh_.patches()[patch_index_];
-  for (int i = 0; i < surface_.size(); ++i) {
-    const int f = patch.start + i;
-    eta_[i] = eta_star_[i] + dt_eff_[i] * face_flux[f] / mesh_.face_area_magnitudes()[f];
+  std::vector<double> own(surface_face_.size());
+  for (std::size_t i = 0; i < own.size(); ++i) {
+    const int s = surface_face_[i];
+    const int f = patch.start + static_cast<int>(i);
+    own[i] = eta_star_[s] + dt_eff_[s] * face_flux[f] / mesh_.face_area_magnitudes()[f];
+  }
+  if (part_) {
+    // Every rank's faces, so that every rank holds the whole of eta.
+    const std::vector<double> all = AllGather(*part_, own);
+    for (std::size_t k = 0; k < all.size(); ++k) eta_[gathered_faces_[k]] = all[k];
+  } else {
+    for (std::size_t i = 0; i < own.size(); ++i) eta_[surface_face_[i]] = own[i];
   }
   armed_ = false;
 }

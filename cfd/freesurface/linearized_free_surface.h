@@ -57,6 +57,7 @@
 
 #include "cfd/bc/boundary_condition.h"
 #include "cfd/freesurface/patch_surface.h"
+#include "cfd/parallel/domain_part.h"
 
 namespace kelvin::cfd {
 
@@ -119,11 +120,25 @@ struct LinearizedFreeSurfaceOptions {
   void Validate() const;
 };
 
+// A run on MPI ranks (docs/formulation.md section 13): the rank's faces of
+// the patch are part of the patch of the undecomposed mesh. The kinematic
+// condition is solved on that whole 2D face mesh on every rank (the same
+// arithmetic in the same order as serially); each rank sets the pressure
+// condition of its own faces, and after each flux correction the ranks'
+// new elevations are gathered, so every rank holds all of eta.
+struct FreeSurfaceOnRanks {
+  const Mesh* whole = nullptr;  // the undecomposed mesh; read only by the constructor
+  std::shared_ptr<const DomainPart> part;
+};
+
 class LinearizedFreeSurface : public Mixed<double> {
  public:
   // Throws ConfigError if the patch is not a manifold face mesh in z = 0
-  // with outward normal +z, or if the options are invalid.
-  LinearizedFreeSurface(const Mesh& mesh, int patch_index, LinearizedFreeSurfaceOptions options);
+  // with outward normal +z, or if the options are invalid. `mesh` is the
+  // mesh the solver runs on (on ranks: the rank's local mesh, with `ranks`
+  // naming the whole one and the part; collective then).
+  LinearizedFreeSurface(const Mesh& mesh, int patch_index, LinearizedFreeSurfaceOptions options,
+                        FreeSurfaceOnRanks ranks = {});
 
   void Update(const BcContext& ctx, std::span<const double> cell_values) override;
   void PreparePressureSolve(const BcContext& ctx, const PressureCoupling& coupling) override;
@@ -131,6 +146,9 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::string type() const override { return "linearizedFreeSurface"; }
   PatchRole role() const override { return PatchRole::kFreeSurface; }
   std::vector<std::pair<std::string, std::vector<double>>> FaceFields() const override;
+  // Face fields, state, eta(), damping() and surface() cover the whole patch
+  // (the undecomposed mesh's patch faces, in its order) on every rank, so
+  // they do not depend on the partition.
   // [time, started, old levels, rigid lid, eta, eta^n, eta^{n-1}] (old
   // levels padded with zeros); SetState also reads the older layout without
   // the rigid-lid flag.
@@ -161,13 +179,22 @@ class LinearizedFreeSurface : public Mixed<double> {
  private:
   // Starts a new time level when ctx.time moves on.
   void AdvanceTime(double time);
-  // Face value of the applied pressure at time t.
+  // Face value of the applied pressure at time t (surface face i).
   double SurfacePressure(int i, double time) const;
+  // The known part eta*_f and the implicit diagonal of every surface face
+  // (the advection, the beach and the local pseudo-time included).
+  void AssembleKinematic(double t, double dt, bool bdf2, std::vector<double>& known, std::vector<double>& diag);
 
   const Mesh& mesh_;
   int patch_index_;
   LinearizedFreeSurfaceOptions options_;
   PatchSurface surface_;
+  // The surface face of each face of the patch in `mesh_` (the identity serially).
+  std::vector<int> surface_face_;
+  // On ranks: the part, and the surface face of each value the gather of
+  // the ranks' new elevations returns (rank by rank).
+  std::shared_ptr<const DomainPart> part_;
+  std::vector<int> gathered_faces_;
   std::vector<char> extrapolate_rim_;  // per edge: inflow extrapolates eta (waterline)
   std::vector<double> mu_;
   std::vector<double> eta_;

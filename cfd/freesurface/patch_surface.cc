@@ -59,7 +59,6 @@ PatchSurface::PatchSurface(const Mesh& mesh, int patch_index) {
   }
 
   const int n = patch.size;
-  patch_start_ = patch.start;
   std::unordered_map<std::uint64_t, int> edge_of;
   std::vector<std::vector<int>> per_face(n);
   for (int i = 0; i < n; ++i) {
@@ -114,21 +113,37 @@ PatchSurface::PatchSurface(const Mesh& mesh, int patch_index) {
     }
   }
 
+  // The body-fixed copy of the geometry (the mesh holds no placement yet at
+  // construction, or its body-fixed points when placed: Mesh::SetPlacement).
+  std::unordered_map<int, int> compact;
+  for (auto& pair : edge_points_) {
+    for (int& label : pair) {
+      const auto [it, inserted] = compact.emplace(label, static_cast<int>(body_points_.size()));
+      if (inserted) body_points_.push_back(mesh.placement_rotation().transpose() *
+                                           (mesh.points()[label] - mesh.placement_translation()));
+      label = it->second;
+    }
+  }
+  body_centres_.resize(n);
+  areas_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    body_centres_[i] = mesh.placement_rotation().transpose() *
+                       (mesh.face_centres()[patch.start + i] - mesh.placement_translation());
+    areas_[i] = mesh.face_area_magnitudes()[patch.start + i];
+  }
   UpdateGeometry(mesh);
 }
 
 void PatchSurface::UpdateGeometry(const Mesh& mesh) {
   const int n = static_cast<int>(face_edge_offsets_.size()) - 1;
+  const Eigen::Matrix3d& rotation = mesh.placement_rotation();
+  const Vector3& translation = mesh.placement_translation();
   centres_.resize(n);
-  areas_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    centres_[i] = mesh.face_centres()[patch_start_ + i];
-    areas_[i] = mesh.face_area_magnitudes()[patch_start_ + i];
-  }
+  for (int i = 0; i < n; ++i) centres_[i] = rotation * body_centres_[i] + translation;
   for (std::size_t e = 0; e < edges_.size(); ++e) {
     Edge& edge = edges_[e];
-    const Vector3& xa = mesh.points()[edge_points_[e][0]];
-    const Vector3& xb = mesh.points()[edge_points_[e][1]];
+    const Vector3 xa = rotation * body_points_[edge_points_[e][0]] + translation;
+    const Vector3 xb = rotation * body_points_[edge_points_[e][1]] + translation;
     edge.centre = 0.5 * (xa + xb);
     const Vector3 d = xb - xa;
     edge.normal = Vector3(d.y(), -d.x(), 0.0);

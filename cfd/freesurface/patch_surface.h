@@ -32,9 +32,12 @@ class PatchSurface {
   // than two of its faces.
   PatchSurface(const Mesh& mesh, int patch_index);
 
-  // Recomputes the geometry (centres, areas, edge centres and normals,
-  // least-squares weights) from the current placement of the mesh, for a
-  // mesh that moves rigidly in the plane; the topology stays.
+  // Recomputes the geometry (centres, edge centres and normals,
+  // least-squares weights) at the rigid placement of `mesh` (Mesh::
+  // SetPlacement), for a mesh that moves rigidly in the plane; the topology
+  // stays. The surface keeps its own body-fixed copy of the patch geometry,
+  // so `mesh` may be the one it was built from or, on MPI ranks, the rank's
+  // part of it (the placement is the same).
   void UpdateGeometry(const Mesh& mesh);
 
   int size() const { return static_cast<int>(centres_.size()); }
@@ -62,9 +65,11 @@ class PatchSurface {
   std::string name_;
   std::vector<Vector3> centres_;
   std::vector<double> areas_;
-  int patch_start_ = 0;
   std::vector<Edge> edges_;
-  std::vector<std::array<int, 2>> edge_points_;  // mesh point labels of each edge
+  std::vector<std::array<int, 2>> edge_points_;  // indices into body_points_ of each edge
+  // Body-fixed geometry at construction: the patch's points and face centres.
+  std::vector<Vector3> body_points_;
+  std::vector<Vector3> body_centres_;
   std::vector<int> face_edge_offsets_;
   std::vector<int> face_edges_;
   Vector3 min_ = Vector3::Zero();

@@ -61,12 +61,17 @@ void OnFirstRank(const DomainPart* part, const std::function<void()>& write) {
       if (error.empty()) error = "a file could not be written";
     }
   }
-  int n = static_cast<int>(error.size());
+  error = FromFirstRank(part, std::move(error));
+  if (!error.empty()) throw DataFileError(error);
+}
+
+std::string FromFirstRank(const DomainPart* part, std::string text) {
+  if (!part || !part->parallel()) return text;
+  int n = static_cast<int>(text.size());
   MPI_Bcast(&n, 1, MPI_INT, 0, part->comm);
-  if (n == 0) return;
-  error.resize(static_cast<std::size_t>(n));
-  MPI_Bcast(error.data(), n, MPI_CHAR, 0, part->comm);
-  throw DataFileError(error);
+  text.resize(static_cast<std::size_t>(n));
+  MPI_Bcast(text.data(), n, MPI_CHAR, 0, part->comm);
+  return text;
 }
 
 int DomainPart::OwnedCell(long long global) const {

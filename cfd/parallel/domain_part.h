@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "cfd/fv/gradient.h"
@@ -96,6 +97,10 @@ std::vector<double> AllGather(const DomainPart& part, std::span<const double> lo
 // on every rank as a DataFileError with its message, so all stop alike
 // (collective). Serially it runs `write` as it is.
 void OnFirstRank(const DomainPart* part, const std::function<void()>& write);
+
+// Rank 0's `text` on every rank (collective; `text` itself when serial):
+// what rank 0 reports of a file only it writes.
+std::string FromFirstRank(const DomainPart* part, std::string text);
 
 // Gives the faces between ranks one value: each leaf copy of a face flux
 // (local orientation against the whole mesh's) becomes minus the root's

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <limits>
+
 #include "cfd/parallel/decompose.h"
 #include "data/schema/errors.h"
 
@@ -95,35 +98,9 @@ std::vector<double> ScatterFaces(const DomainPart& part, const std::vector<doubl
   return out;
 }
 
-void RequireDecomposable(const PimpleSolver::State& s) {
-  for (const auto& bc : s.bc_state) {
-    if (!bc.empty()) {
-      throw ConfigError("the state holds a boundary condition's own unknowns (the linearized free surface); those do "
-                        "not move between rank counts yet");
-    }
-  }
-}
-
 // The turbulence model's arrays over the boundary faces (the wall
 // function's face viscosity); every other array is over the cells.
 bool BoundaryArray(const std::string& name) { return name == "nut_wall"; }
-
-// A boundary-face array of the local mesh in the order of the whole mesh's
-// boundary faces (the faces on the processor patch are the ghosts' and are
-// left out: every boundary face of the whole mesh is some rank's own).
-std::vector<double> GatherBoundaryArray(const DomainPart& part, const Mesh& mesh, const std::vector<double>& local) {
-  const int ni = mesh.n_internal_faces();
-  const long long gi = part.n_global_internal_faces;
-  const int processor = mesh.FindPatch(kProcessorPatch);
-  const Patch* proc = processor >= 0 ? &mesh.patches()[processor] : nullptr;
-  auto on_processor = [&](std::size_t f) {
-    return proc && static_cast<int>(f) >= proc->start && static_cast<int>(f) < proc->start + proc->size;
-  };
-  return Reduce(
-      part, static_cast<std::size_t>(part.n_global_faces - gi), local.data(), local.size(), 1,
-      [&](std::size_t b) { return !on_processor(b + ni); },
-      [&](std::size_t b) { return std::pair<long long, double>(part.faces[b + ni] - gi, 1.0); });
-}
 
 std::vector<double> ScatterBoundaryArray(const DomainPart& part, const Mesh& mesh, const std::vector<double>& global,
                                          const std::string& name) {
@@ -141,12 +118,41 @@ std::vector<double> ScatterBoundaryArray(const DomainPart& part, const Mesh& mes
 
 }  // namespace
 
+// The faces on the processor patch are the ghosts' and are left out: every
+// boundary face of the whole mesh is some rank's own.
 std::vector<double> GatherBoundaryFaces(const DomainPart& part, const Mesh& mesh, const std::vector<double>& local) {
-  return GatherBoundaryArray(part, mesh, local);
+  const int ni = mesh.n_internal_faces();
+  const long long gi = part.n_global_internal_faces;
+  const int processor = mesh.FindPatch(kProcessorPatch);
+  const Patch* proc = processor >= 0 ? &mesh.patches()[processor] : nullptr;
+  auto on_processor = [&](std::size_t f) {
+    return proc && static_cast<int>(f) >= proc->start && static_cast<int>(f) < proc->start + proc->size;
+  };
+  return Reduce(
+      part, static_cast<std::size_t>(part.n_global_faces - gi), local.data(), local.size(), 1,
+      [&](std::size_t b) { return !on_processor(b + ni); },
+      [&](std::size_t b) { return std::pair<long long, double>(part.faces[b + ni] - gi, 1.0); });
+}
+
+std::vector<Vector3> GatherPatchFaces(const DomainPart* part, const Mesh& mesh, int patch,
+                                      std::span<const Vector3> local) {
+  const Patch& p = mesh.patches()[patch];
+  KELVIN_CHECK(static_cast<int>(local.size()) == p.size, "one value per face of the patch");
+  if (!part || !part->parallel()) return {local.begin(), local.end()};
+  // The patch's faces are contiguous in the whole mesh, each on one rank.
+  double first = std::numeric_limits<double>::max();
+  for (int f = p.start; f < p.start + p.size; ++f) first = std::min(first, static_cast<double>(part->faces[f]));
+  const auto start = static_cast<long long>(part->Min(first));
+  const auto n = static_cast<std::size_t>(part->Sum(p.size));
+  const std::vector<double> sum = Reduce(
+      *part, n, local.empty() ? nullptr : local.front().data(), local.size(), 3, [](std::size_t) { return true; },
+      [&](std::size_t i) { return std::pair<long long, double>(part->faces[p.start + i] - start, 1.0); });
+  std::vector<Vector3> out(n);
+  for (std::size_t i = 0; i < n; ++i) out[i] = Vector3(sum[3 * i], sum[3 * i + 1], sum[3 * i + 2]);
+  return out;
 }
 
 PimpleSolver::State GatherState(const DomainPart& part, const Mesh& mesh, const PimpleSolver::State& local) {
-  RequireDecomposable(local);
   PimpleSolver::State g;
   g.time = local.time;
   g.step = local.step;
@@ -160,14 +166,13 @@ PimpleSolver::State GatherState(const DomainPart& part, const Mesh& mesh, const 
   g.bc_state.pop_back();  // the processor patch's, of U ...
   g.bc_state.erase(g.bc_state.begin() + static_cast<long>(g.bc_state.size() / 2));  // ... and of p
   for (const auto& [name, values] : local.turbulence) {
-    g.turbulence.emplace_back(name, BoundaryArray(name) ? GatherBoundaryArray(part, mesh, values)
+    g.turbulence.emplace_back(name, BoundaryArray(name) ? GatherBoundaryFaces(part, mesh, values)
                                                         : GatherCellArray(part, values));
   }
   return g;
 }
 
 PimpleSolver::State ScatterState(const DomainPart& part, const Mesh& mesh, const PimpleSolver::State& global) {
-  RequireDecomposable(global);
   PimpleSolver::State s;
   s.time = global.time;
   s.step = global.step;
@@ -177,9 +182,15 @@ PimpleSolver::State ScatterState(const DomainPart& part, const Mesh& mesh, const
   s.p = ScatterCells(part, global.p, "p");
   s.phi = ScatterFaces(part, global.phi, "phi");
   for (const auto& phi : global.phi_old) s.phi_old.push_back(ScatterFaces(part, phi, "phi_old"));
-  // One (empty) condition state per patch, the processor patch included, for U then p.
-  const std::size_t patches = global.bc_state.size() / 2 + 1;
-  s.bc_state.assign(2 * patches, {});
+  // The conditions' own state (the free surface's eta) is over whole
+  // patches on every rank already: each patch's as it is, for U then p,
+  // and an empty one for the processor patch after each.
+  const std::size_t patches = global.bc_state.size() / 2;
+  for (std::size_t field = 0; field < 2; ++field) {
+    const auto first = global.bc_state.begin() + static_cast<long>(field * patches);
+    s.bc_state.insert(s.bc_state.end(), first, first + static_cast<long>(patches));
+    s.bc_state.emplace_back();
+  }
   for (const auto& [name, values] : global.turbulence) {
     s.turbulence.emplace_back(name, BoundaryArray(name) ? ScatterBoundaryArray(part, mesh, values, name)
                                                         : ScatterCells(part, values, name.c_str()));

@@ -17,15 +17,21 @@ PimpleSolver::State GatherState(const DomainPart& part, const Mesh& mesh, const 
 // The rank's part (owned and ghost cells, local faces) of a state in the
 // whole mesh's order, on `mesh`, the rank's local mesh. Throws DataFileError
 // when the state's sizes are not those of the decomposed mesh (a checkpoint of
-// another mesh), and ConfigError for state that is not decomposed yet
-// (conditions with their own unknowns: the linearized free surface). The
-// turbulence model's arrays move with the cells, its wall-face viscosity with
-// the boundary faces.
+// another mesh). The turbulence model's arrays move with the cells, its
+// wall-face viscosity with the boundary faces; a condition's own unknowns
+// (the linearized free surface's eta) cover its whole patch on every rank
+// and pass as they are.
 PimpleSolver::State ScatterState(const DomainPart& part, const Mesh& mesh, const PimpleSolver::State& global);
 
 // One value per boundary face of the rank's local mesh `mesh`, as the whole
 // mesh's boundary faces (n_global_faces - n_global_internal_faces values, in
 // its order), on every rank (collective): gathered output of patch fields.
 std::vector<double> GatherBoundaryFaces(const DomainPart& part, const Mesh& mesh, const std::vector<double>& local);
+
+// One vector per face of patch `patch` of the rank's local mesh, as the faces
+// of that patch in the whole mesh (in its order), on every rank (collective):
+// gathered reports of a patch's faces. Serially the values as they are.
+std::vector<Vector3> GatherPatchFaces(const DomainPart* part, const Mesh& mesh, int patch,
+                                      std::span<const Vector3> local);
 
 }  // namespace kelvin::cfd

@@ -20,7 +20,8 @@ namespace {
 // relative to the moving mesh, docs/formulation.md section 3); the
 // beach scales with the motion's forward speed.
 std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, const Mesh& mesh, int patch,
-                                                           const RigidMeshMotion* motion) {
+                                                           const RigidMeshMotion* motion,
+                                                           const FreeSurfaceOnRanks& ranks) {
   n.ExpectKeys({"type", "g", "mesh_velocity", "advection", "beach", "waterline_patches", "pressure_patch",
                 "kinematic_courant", "limit_advection"});
   LinearizedFreeSurfaceOptions o;
@@ -93,7 +94,7 @@ std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, 
     }
   }
   try {
-    return std::make_unique<LinearizedFreeSurface>(mesh, patch, std::move(o));
+    return std::make_unique<LinearizedFreeSurface>(mesh, patch, std::move(o), ranks);
   } catch (const ConfigError& e) {
     n["type"].Fail(std::string("a patch that can carry the free surface; ") + e.what());
   }
@@ -150,7 +151,8 @@ std::unique_ptr<BoundaryCondition<Vector3>> LoadVelocityBc(const ConfigNode& n, 
 }
 
 std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, const Mesh& mesh, int patch,
-                                                          const RigidMeshMotion* motion) {
+                                                          const RigidMeshMotion* motion,
+                                                          const FreeSurfaceOnRanks& ranks) {
   const std::string type = n.Get<std::string>("type");
   if (type == "fixedValue") {
     n.ExpectKeys({"type", "value"});
@@ -178,7 +180,7 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, c
     if (!(f >= 0.0 && f <= 1.0)) n["fraction"].Fail("a value fraction in [0, 1]");
     return std::make_unique<Mixed<double>>(n.Get<double>("value", 0.0), n.Get<double>("gradient", 0.0), f);
   }
-  if (type == "linearizedFreeSurface") return LoadFreeSurface(n, mesh, patch, motion);
+  if (type == "linearizedFreeSurface") return LoadFreeSurface(n, mesh, patch, motion, ranks);
   n["type"].Fail("one of fixedValue, zeroGradient, outletInlet, farField, empty, mixed, linearizedFreeSurface");
 }
 

@@ -204,7 +204,8 @@ struct Fields {
   std::unique_ptr<ScalarField> p;
 };
 
-Fields LoadBoundary(const ConfigNode& b, const Mesh& mesh, const RigidMeshMotion* motion) {
+Fields LoadBoundary(const ConfigNode& b, const Mesh& mesh, const RigidMeshMotion* motion,
+                    const FreeSurfaceOnRanks& ranks) {
   std::vector<std::string> patch_names;
   for (const Patch& p : mesh.patches()) {
     if (p.kind != PatchKind::kProcessor) patch_names.push_back(p.name);
@@ -231,7 +232,7 @@ Fields LoadBoundary(const ConfigNode& b, const Mesh& mesh, const RigidMeshMotion
     const ConfigNode pn = b[p.name];
     pn.ExpectKeys({"U", "p"});
     u_bcs.push_back(LoadVelocityBc(pn["U"], motion));
-    p_bcs.push_back(LoadPressureBc(pn["p"], mesh, static_cast<int>(p_bcs.size()), motion));
+    p_bcs.push_back(LoadPressureBc(pn["p"], mesh, static_cast<int>(p_bcs.size()), motion, ranks));
     if (p_bcs.back()->type() == "linearizedFreeSurface" && u_bcs.back()->type() != "zeroGradient") {
       pn["U"]["type"].Fail("zeroGradient on a linearizedFreeSurface patch (its flux comes from the pressure equation)");
     }
@@ -334,7 +335,6 @@ void RefuseOnRanks(const ConfigNode& root, int ranks) {
   for (const char* section : {"propeller", "rudder", "maneuver"}) {
     if (root.Has(section)) refuse(root[section], fmt::format("the {} section", section));
   }
-  if (root.Has("resistance")) refuse(root["resistance"], "the resistance report (resistance:)");
 }
 
 // Cuts the loaded whole mesh over the ranks of `comm` (more than one): the
@@ -419,7 +419,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
     const Vector3 g = *s.body_force;
     physics.source = [g](const Vector3&, double) { return g; };
   }
-  Fields fields = LoadBoundary(root["boundary"], mesh, c.motion.get());
+  Fields fields = LoadBoundary(root["boundary"], mesh, c.motion.get(), {c.whole_mesh.get(), c.part});
   ValidateAt(root["solution"], [&] {
     c.solver = std::make_unique<PimpleSolver>(mesh, physics, LoadSchemes(root), LoadPimple(root), std::move(fields.U),
                                               std::move(fields.p), c.part);
@@ -446,12 +446,16 @@ Case LoadCaseFile(const fs::path& case_file, const CaseOverrides& overrides) {
   return LoadCase(ConfigNode::LoadFile(case_file), case_file.parent_path(), overrides);
 }
 
-double FlowThroughTime(const Mesh& mesh, const CaseReference& reference) {
+double FlowThroughTime(const Mesh& mesh, const CaseReference& reference, const DomainPart* part) {
   // One flow-through: the extent of the mesh along the drag direction / speed.
   double lo = std::numeric_limits<double>::max(), hi = -lo;
   for (const Vector3& x : mesh.points()) {
     lo = std::min(lo, x.dot(reference.direction));
     hi = std::max(hi, x.dot(reference.direction));
+  }
+  if (part && part->parallel()) {
+    lo = part->Min(lo);
+    hi = part->Max(hi);
   }
   return (hi - lo) / reference.speed;
 }

@@ -125,6 +125,7 @@ Case LoadCaseFile(const std::filesystem::path& case_file, const CaseOverrides& o
 // Total face area of the patches (m^2).
 double PatchArea(const Mesh& mesh, std::span<const int> patches);
 // One flow-through (s): the mesh extent along reference.direction / reference.speed.
-double FlowThroughTime(const Mesh& mesh, const CaseReference& reference);
+// On MPI ranks (`part`) the extent of the whole mesh (collective).
+double FlowThroughTime(const Mesh& mesh, const CaseReference& reference, const DomainPart* part = nullptr);
 
 }  // namespace kelvin::cfd

@@ -9,11 +9,18 @@
 
 #include "cfd/freesurface/linearized_free_surface.h"
 #include "cfd/freesurface/wave_analysis.h"
+#include "cfd/parallel/state_layout.h"
 #include "data/reference/friction_lines.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 
 namespace kelvin::cfd {
+
+// Per hull face at the last step: where on the hull the resistance acts. On
+// MPI ranks every rank's faces, in the whole mesh's order (collective).
+struct HullFaces {
+  std::vector<Vector3> centre, area, pressure, viscous;
+};
 
 ResistanceMonitor::ResistanceMonitor(const Case& c)
     : options_(c.settings.resistance.value()),
@@ -23,7 +30,7 @@ ResistanceMonitor::ResistanceMonitor(const Case& c)
       file_(c.settings.output.directory / "resistance.h5"),
       free_surface_(options_.free_surface_patch.empty() ? nullptr : c.free_surface),
       hull_(c.mesh->FindPatch(options_.hull_patch)),
-      flow_through_(FlowThroughTime(*c.mesh, c.settings.reference)),
+      flow_through_(FlowThroughTime(*c.mesh, c.settings.reference, c.part.get())),
       tolerance_(c.settings.time.steady ? c.settings.time.steady->criterion.tolerance
                                         : std::numeric_limits<double>::quiet_NaN()) {
   KELVIN_CHECK(hull_ >= 0, "a hull patch the loader resolved");
@@ -45,7 +52,6 @@ void ResistanceMonitor::AfterStep(const PimpleSolver& solver, const StepRecord& 
   rows_.push_back({solver.time(), rp + rf, rf, rp, rwl, steady_.force_change, steady_.eta_change});
 }
 
-std::vector<std::string> ResistanceMonitor::Finish(const PimpleSolver& solver) { return {Write(file_, solver)}; }
 
 namespace {
 
@@ -62,20 +68,25 @@ std::vector<double> Flatten(std::span<const Vector3> v) {
   return out;
 }
 
-// Per hull face at the last step: where on the hull the resistance acts.
-void WriteHullFaces(data::H5Writer& w, const Mesh& mesh, int hull, const PatchFaceForces& ff,
-                    const Vector3& direction) {
+HullFaces GatherHullFaces(const PimpleSolver& solver, int hull, const PatchFaceForces& ff) {
+  const Mesh& mesh = solver.mesh();
   const Patch& patch = mesh.patches()[hull];
-  const std::size_t n = static_cast<std::size_t>(patch.size);
-  const auto faces = [&](std::span<const Vector3> all) {
-    return Flatten(all.subspan(static_cast<std::size_t>(patch.start), n));
+  const auto gather = [&](std::span<const Vector3> v) { return GatherPatchFaces(solver.part(), mesh, hull, v); };
+  const auto slice = [&](std::span<const Vector3> all) {
+    return all.subspan(static_cast<std::size_t>(patch.start), static_cast<std::size_t>(patch.size));
   };
-  w.WriteArray("hull_faces/centre", faces(mesh.face_centres()), {n, 3}, "m", "hull face centres (mesh axes)");
-  w.WriteArray("hull_faces/area", faces(mesh.face_areas()), {n, 3}, "m^2",
+  return {gather(slice(mesh.face_centres())), gather(slice(mesh.face_areas())), gather(ff.pressure),
+          gather(ff.viscous)};
+}
+
+void WriteHullFaces(data::H5Writer& w, const HullFaces& hf, const Vector3& direction) {
+  const std::size_t n = hf.centre.size();
+  w.WriteArray("hull_faces/centre", Flatten(hf.centre), {n, 3}, "m", "hull face centres (mesh axes)");
+  w.WriteArray("hull_faces/area", Flatten(hf.area), {n, 3}, "m^2",
                "hull face area vectors, out of the water into the hull");
-  w.WriteArray("hull_faces/pressure_force", Flatten(ff.pressure), {n, 3}, "N",
+  w.WriteArray("hull_faces/pressure_force", Flatten(hf.pressure), {n, 3}, "N",
                "pressure force of the water on each hull face");
-  w.WriteArray("hull_faces/viscous_force", Flatten(ff.viscous), {n, 3}, "N",
+  w.WriteArray("hull_faces/viscous_force", Flatten(hf.viscous), {n, 3}, "N",
                "viscous force of the water on each hull face");
   w.WriteArray("hull_faces/direction", std::vector<double>{direction.x(), direction.y(), direction.z()}, {3}, "1",
                "unit resistance direction d (R = F . d)");
@@ -190,8 +201,16 @@ std::string ResistanceMonitor::WriteWaveMaking(data::H5Writer& w) const {
                      rp / q - cp_db, (rp / q - cp_db) * q);
 }
 
-std::string ResistanceMonitor::Write(const std::filesystem::path& file, const PimpleSolver& solver) const {
-  KELVIN_CHECK(!rows_.empty() && !last_faces_.pressure.empty(), "a recorded last step before the report");
+std::vector<std::string> ResistanceMonitor::Finish(const PimpleSolver& solver) {
+  KELVIN_CHECK(!rows_.empty() && static_cast<int>(last_faces_.pressure.size()) == solver.mesh().patches()[hull_].size,
+               "a recorded last step before the report");
+  const HullFaces faces = GatherHullFaces(solver, hull_, last_faces_);
+  std::string summary;
+  OnFirstRank(solver.part(), [&] { summary = Write(file_, faces); });
+  return {FromFirstRank(solver.part(), std::move(summary))};
+}
+
+std::string ResistanceMonitor::Write(const std::filesystem::path& file, const HullFaces& faces) const {
   data::H5Writer w(file);
   std::string summary = WriteSplit(w);
   summary += WriteWaveMaking(w);
@@ -200,7 +219,7 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Pi
   for (std::size_t r = 0; r < rows; ++r) std::copy(rows_[r].begin(), rows_[r].end(), h.begin() + 7 * r);
   w.WriteArray("history", h, {rows, 7}, "s, N, N, N, N, 1, 1",
                "per step: time, R_T, R_F, R_P, R_WL, force change, eta change (NaN before a full window)");
-  WriteHullFaces(w, solver.mesh(), hull_, last_faces_, reference_.direction);
+  WriteHullFaces(w, faces, reference_.direction);
   if (free_surface_) {
     const double q = DynamicForce();
     const double rwl = rows_.back()[4];

@@ -29,6 +29,8 @@
 
 namespace kelvin::cfd {
 
+struct HullFaces;  // the hull's faces and their forces at the last step, gathered over the ranks
+
 class ResistanceMonitor final : public Monitor {
  public:
   // The case must have a resistance: section (LoadCase has checked its
@@ -44,7 +46,8 @@ class ResistanceMonitor final : public Monitor {
   const std::vector<std::array<double, 7>>& rows() const { return rows_; }
 
  private:
-  std::string Write(const std::filesystem::path& file, const PimpleSolver& solver) const;
+  // The report of rank 0 (or the only rank); `faces` gathered by all.
+  std::string Write(const std::filesystem::path& file, const HullFaces& faces) const;
   // The split, its coefficients and the steady criterion; the wave-making
   // part against the double body. Each returns its part of the summary.
   std::string WriteSplit(data::H5Writer& writer) const;

@@ -115,7 +115,7 @@ void FieldOutput::Write(const PimpleSolver& solver) {
     const int ni = mesh.n_internal_faces();
     for (int k = 0; k < static_cast<int>(mesh.patches().size()); ++k) {
       const Patch& patch = mesh.patches()[k];
-      // A linearized free surface (its eta) never runs on ranks.
+      // A condition's face fields (the free surface's eta) cover its whole patch on every rank.
       auto fields = solver.p().bc(k).FaceFields();
       const bool wall = walls.count(patch.name) > 0;
       if (fields.empty() && !wall) continue;

@@ -73,13 +73,6 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
   // A rank with no face of the empty patches agrees with those that have one.
   if (Parallel()) {
     for (bool& solve : solve_component_) solve = part_->All(solve);
-    for (int k = 0; k < p_->n_patches(); ++k) {
-      if (p_->bc(k).role() == PatchRole::kFreeSurface) {
-        throw ConfigError(fmt::format("boundary.{}.p: the {} condition does not run on {} ranks yet (its free-surface "
-                                      "mesh would be cut by the partition); expected one rank",
-                                      mesh.patches()[k].name, p_->bc(k).type(), part_->size));
-      }
-    }
   }
   // The corrections vanish identically on orthogonal meshes: skip their work.
   non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;

@@ -85,9 +85,9 @@ TEST(PatchSurface, EdgesNormalsRimAndExactLinearGradient) {
   }
 }
 
-// A rigidly moved copy of the mesh (same topology, points rotated about z
-// and translated in the plane): updating the geometry of a surface built on
-// the original gives the surface built on the copy.
+// The mesh placed rigidly (rotated about z and translated in the plane,
+// Mesh::SetPlacement): updating the geometry of a surface built on it before
+// the placement gives the surface built on a mesh made from the moved points.
 TEST(PatchSurface, UpdateGeometryFollowsARigidInPlaneMotion) {
   const Mesh a = Box({5, 3, 2}, true);
   const Eigen::AngleAxisd rot(0.3, Vector3::UnitZ());
@@ -99,7 +99,9 @@ TEST(PatchSurface, UpdateGeometryFollowsARigidInPlaneMotion) {
                std::vector<int>(a.neighbour().begin(), a.neighbour().end()), a.patches());
   const int top = a.FindPatch("zmax");
   PatchSurface moved(a, top);
-  moved.UpdateGeometry(b);
+  Mesh placed = a;
+  placed.SetPlacement(rot.toRotationMatrix(), Vector3(1.5, -0.7, 0.0));
+  moved.UpdateGeometry(placed);
   const PatchSurface fresh(b, top);
   ASSERT_EQ(moved.edges().size(), fresh.edges().size());
   for (int i = 0; i < moved.size(); ++i)

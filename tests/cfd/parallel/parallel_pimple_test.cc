@@ -205,37 +205,6 @@ TEST(ParallelPimple, StateMovesBetweenRankCounts) {
   EXPECT_LT(du, 1e-8);
 }
 
-// A pressure condition with its own unknowns on the free surface (any
-// condition that says so) is refused on ranks: its 2D face mesh would be cut.
-class FreeSurfaceRole : public ZeroGradient<double> {
- public:
-  std::string type() const override { return "linearizedFreeSurface"; }
-  PatchRole role() const override { return PatchRole::kFreeSurface; }
-};
-
-TEST(ParallelPimple, FreeSurfaceIsRefusedOnRanks) {
-  if (WorldSize() < 2) GTEST_SKIP() << "one rank";
-  const Mesh whole = Cavity();
-  const LocalDomain local = DecomposeOverWorld(whole);
-  const Mesh& mesh = *local.mesh;
-  auto U = testing::MakeField<Vector3>("U", mesh, [](const Patch&) -> std::unique_ptr<BoundaryCondition<Vector3>> {
-    return std::make_unique<ZeroGradient<Vector3>>();
-  });
-  auto p = testing::MakeField<double>("p", mesh, [](const Patch& patch) -> std::unique_ptr<BoundaryCondition<double>> {
-    if (patch.name == "ymax") return std::make_unique<FreeSurfaceRole>();
-    return std::make_unique<ZeroGradient<double>>();
-  });
-  try {
-    PimpleSolver solver(mesh, PhysicsOptions{}, SchemeOptions{}, PimpleOptions{}, std::move(U), std::move(p),
-                        local.part);
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("boundary.ymax.p: the linearizedFreeSurface condition does not run on"),
-              std::string::npos)
-        << e.what();
-  }
-}
-
 // A state of another mesh is refused with the sizes.
 TEST(ParallelPimple, StateOfAnotherMeshIsRefused) {
   const Mesh whole = Cavity();

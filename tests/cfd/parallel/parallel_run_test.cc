@@ -4,7 +4,9 @@
 // linear solvers' tolerances at 1e-12 its loads agree with the serial run's
 // at every step, its checkpoint restarts on another number of ranks, its
 // fields are gathered into one VTU of the whole mesh, and what cannot run on
-// ranks is refused with one error.
+// ranks is refused with one error. A block piercing the linearized free
+// surface (its face mesh cut by the partition) runs likewise, with its
+// resistance report.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -236,6 +238,137 @@ TEST(RunOnRanks, TooFewCellsPerRankIsRefused) {
     EXPECT_THAT(e.what(), HasSubstr("232 cells"));
     EXPECT_THAT(e.what(), HasSubstr("200"));
   }
+}
+
+// A block piercing the linearized free surface in a 12 x 8 x 2 box (186
+// cells; tests/cfd/freesurface/resistance_test.cc): the free surface's face
+// mesh is cut by the partition, the surface starts as a rigid lid and is
+// released after one flow-through (6 s), and the resistance report gathers
+// the hull faces. Linear solvers at 1e-12; the steady criterion is never met,
+// so the run takes its 40 steps.
+const char* kFreeSurfaceCase = R"(mesh:
+  box: {min: [0, -2, -1], max: [6, 2, 0], cells: [12, 8, 2], obstacle: {min: [4, 3, 1], max: [7, 5, 2]}}
+physics: {nu: 1.0e-2, rho: 998.0}
+schemes: {convection: upwind, gradient: gauss}
+solution:
+  n_outer: 2
+  relax: {U: 0.7, p: 0.3, U_final: 1, p_final: 1}
+  momentum: {solver: bicgstab, relative_tolerance: 1.0e-12}
+  pressure: {solver: pcg_amg, relative_tolerance: 1.0e-12}
+reference: {speed: 1, direction: [-1, 0, 0], length: 1.5}
+time: {dt: 0.5, end: 20, rigid_lid_windows: 1,
+       steady: {quantities: [drag, eta], tolerance: 1.0e-12, min_windows: 1}}
+boundary:
+  xmax: {U: {type: fixedValue, value: [-1, 0, 0]}, p: {type: zeroGradient}}
+  xmin: {U: {type: zeroGradient}, p: {type: fixedValue, value: 0}}
+  ymin: {U: {type: slip}, p: {type: zeroGradient}}
+  ymax: {U: {type: slip}, p: {type: zeroGradient}}
+  zmin: {U: {type: slip}, p: {type: zeroGradient}}
+  obstacle: {U: {type: noSlip}, p: {type: zeroGradient}}
+  zmax:
+    U: {type: zeroGradient}
+    p: {type: linearizedFreeSurface, mesh_velocity: [1, 0, 0], kinematic_courant: 2, waterline_patches: [obstacle],
+        limit_advection: true, beach: {width: 0.5, strength: 1.0, sides: [xmin, ymin, ymax]}}
+output: {directory: out, vtu_interval: 0, checkpoint_interval: 20, forces: [obstacle]}
+resistance: {hull: obstacle, free_surface: zmax, wave_cuts: [1.0], wave_cut_points: 24}
+partition: {min_cells_per_rank: 20}
+)";
+
+// What a free-surface run reports, step by step and at its end.
+struct SurfaceRun {
+  std::vector<double> force;  // obstacle pressure and viscous force, 6 per step
+  std::vector<double> eta;    // resistance.h5 surface/eta, the whole pattern at the end
+  double c_t = 0.0, r_t = 0.0, r_wl = 0.0;
+};
+
+SurfaceRun ReadSurfaceRun(const fs::path& out) {
+  const data::H5Reader h(out / "history.h5");
+  const data::Series fp = h.Read("forces/obstacle/pressure"), fv = h.Read("forces/obstacle/viscous");
+  SurfaceRun r;
+  for (std::size_t i = 0; i < fp.rows; ++i) {
+    for (std::size_t d = 0; d < 3; ++d) r.force.push_back(fp.at(i, d));
+    for (std::size_t d = 0; d < 3; ++d) r.force.push_back(fv.at(i, d));
+  }
+  const data::H5Reader res(out / "resistance.h5");
+  r.eta = res.Read("surface/eta").values;
+  r.c_t = res.Read("C_T").at(0);
+  r.r_t = res.Read("R_T").at(0);
+  r.r_wl = res.Read("R_WL").at(0);
+  return r;
+}
+
+SurfaceRun SerialSurfaceRun(const std::string& text, const fs::path& restart = {}) {
+  kelvin::testing::ScopedTempDir own;
+  const RunSummary s = RunIn(testing::WriteCase(own.path(), text), MPI_COMM_NULL, restart);
+  EXPECT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+  return ReadSurfaceRun(own / "out");
+}
+
+// The case stopped at t = 10 s (after the lid's release): its last checkpoint is the restart point.
+std::string SurfaceFirstHalf(std::string text) {
+  text.replace(text.find("end: 20,"), 8, "end: 10,");
+  return text;
+}
+
+TEST(FreeSurfaceOnRanks, ForcesAndPatternMatchTheSerialRunAtEveryStep) {
+  const SurfaceRun serial = SerialSurfaceRun(kFreeSurfaceCase);
+  ASSERT_EQ(serial.force.size(), 40u * 6);
+  SharedTempDir dir;
+  const RunSummary s = RunIn(Write(dir / "ranks", kFreeSurfaceCase), MPI_COMM_WORLD);
+  ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+  EXPECT_THAT(s.message, HasSubstr("resistance on 'obstacle'"));  // rank 0's report, on every rank
+  const SurfaceRun ranks = ReadSurfaceRun(dir / "ranks/out");
+  ASSERT_EQ(ranks.force.size(), serial.force.size());
+  ASSERT_EQ(ranks.eta.size(), serial.eta.size());
+  const double force = Mismatch(serial.force, ranks.force), eta = Mismatch(serial.eta, ranks.eta);
+  if (WorldRank() == 0) {
+    std::printf("%d ranks, free surface: forces over 40 steps within %.2e of the largest, final eta within %.2e, "
+                "C_T %.12e against %.12e serially\n",
+                WorldSize(), force, eta, ranks.c_t, serial.c_t);
+  }
+  EXPECT_LT(force, 1e-8);
+  EXPECT_LT(eta, 1e-8);
+  EXPECT_LT(std::abs(ranks.c_t - serial.c_t), 1e-8 * std::abs(serial.c_t));
+  // R_WL (0.33 N, quadratic in the waterline's eta) corrects R_T (514 N): it agrees as a force of that size.
+  EXPECT_LT(std::abs(ranks.r_wl - serial.r_wl), 1e-8 * std::abs(serial.r_t)) << ranks.r_wl << " N against "
+                                                                              << serial.r_wl << " N";
+  // The surface file of the whole patch (96 faces less the block's 3 x 2), written once.
+  if (WorldRank() == 0) {
+    std::ifstream vtp(dir / "ranks/out/zmax_000040.vtp");
+    std::stringstream text;
+    text << vtp.rdbuf();
+    EXPECT_THAT(text.str(), HasSubstr("NumberOfPolys=\"90\""));
+  }
+}
+
+// A free-surface checkpoint holds the whole pattern: a run saved on the
+// ranks continues serially, and a serial one on the ranks, to the end of
+// the uninterrupted serial run.
+TEST(FreeSurfaceOnRanks, CheckpointRestartsOnAnotherNumberOfRanks) {
+  const SurfaceRun serial = SerialSurfaceRun(kFreeSurfaceCase);
+  SharedTempDir dir;
+  ASSERT_EQ(RunIn(Write(dir / "half_ranks", SurfaceFirstHalf(kFreeSurfaceCase)), MPI_COMM_WORLD).status,
+            RunSummary::Status::kCompleted);
+  const SurfaceRun continued = SerialSurfaceRun(kFreeSurfaceCase, dir / "half_ranks/out/checkpoint.h5");
+  const double to_serial = Mismatch(serial.force, continued.force), eta_serial = Mismatch(serial.eta, continued.eta);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (WorldRank() == 0) {
+    std::ofstream(dir / "serial_half.yaml") << SurfaceFirstHalf(kFreeSurfaceCase);
+    RunIn(dir / "serial_half.yaml", MPI_COMM_NULL, {}, dir / "half_serial");
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  const RunSummary s = RunIn(Write(dir / "rest", kFreeSurfaceCase), MPI_COMM_WORLD, dir / "half_serial/checkpoint.h5");
+  ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+  const SurfaceRun rest = ReadSurfaceRun(dir / "rest/out");
+  const double to_ranks = Mismatch(serial.force, rest.force), eta_ranks = Mismatch(serial.eta, rest.eta);
+  if (WorldRank() == 0) {
+    std::printf("free surface, %d ranks then serial: forces %.2e, eta %.2e; serial then %d ranks: %.2e, %.2e\n",
+                WorldSize(), to_serial, eta_serial, WorldSize(), to_ranks, eta_ranks);
+  }
+  EXPECT_EQ(continued.force.size(), 20u * 6);
+  EXPECT_EQ(rest.force.size(), 20u * 6);
+  EXPECT_LT(std::max(to_serial, to_ranks), 1e-8);
+  EXPECT_LT(std::max(eta_serial, eta_ranks), 1e-8);
 }
 
 // What does not run on ranks yet is refused before the mesh is cut.
