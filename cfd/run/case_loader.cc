@@ -170,7 +170,7 @@ PimpleOptions LoadPimple(const ConfigNode& root) {
 // `turbulence:` k-omega SST (or laminar) on the solver.
 void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, PimpleSolver& solver,
                     std::shared_ptr<const DomainPart> part) {
-  tn.ExpectKeys({"model", "inflow", "convection", "relax"});
+  tn.ExpectKeys({"model", "inflow", "convection", "relax", "solver"});
   const std::string model = tn.Get<std::string>("model");
   if (model != "kOmegaSST" && model != "laminar") tn["model"].Fail("kOmegaSST or laminar");
   if (model == "kOmegaSST") {
@@ -187,6 +187,11 @@ void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, PimpleSol
     so.convection = GetEnum(tn, "convection", ConvectionScheme::kUpwind,
                            {{"upwind", ConvectionScheme::kUpwind}, {"limited", ConvectionScheme::kLimited}});
     so.relax = tn.Get<double>("relax", so.relax);
+    // The k and omega solves: their tolerances and iteration limit (the method is BiCGStab with ILU(0)).
+    if (tn.Has("solver")) {
+      tn["solver"].ExpectKeys({"relative_tolerance", "absolute_tolerance", "max_iterations"});
+      so.solver = LoadSolver(tn["solver"], so.solver, false);
+    }
     ValidateAt(tn, [&] { so.Validate(); });
     // What each patch is to k and omega: the role its conditions state.
     const std::vector<TurbulencePatchRole> roles = TurbulencePatchRoles(solver.U(), solver.p());

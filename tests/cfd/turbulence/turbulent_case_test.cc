@@ -152,6 +152,10 @@ TEST(TurbulentCase, BadInputsNameTheKey) {
   ExpectCaseConfigError(with("viscosity_ratio: 5", "viscosity_ratio: -1"), "viscosity_ratio");
   ExpectCaseConfigError(with(", reference_speed: 1.0", ""), "reference_speed");
   ExpectCaseConfigError(with("  model: kOmegaSST", "  model: kOmegaSST\n  wall_treatment: spalding"), "wall_treatment");
+  // turbulence.solver: the tolerances and iteration limit of the k and omega solves, not the method.
+  ExpectCaseConfigError(with("  model: kOmegaSST", "  model: kOmegaSST\n  solver: {solver: cg}"), "solver");
+  ExpectCaseConfigError(with("  model: kOmegaSST", "  model: kOmegaSST\n  solver: {relative_tolerance: 2}"),
+                        "relative_tolerance = 2; expected in [0, 1)");
   std::string no_walls = with("ymin: {U: {type: noSlip}", "ymin: {U: {type: slip}");
   no_walls.replace(no_walls.find("ymax: {U: {type: noSlip}"), 24, "ymax: {U: {type: slip}");
   ExpectCaseConfigError(no_walls, "at least one wall patch");
