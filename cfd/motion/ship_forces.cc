@@ -59,7 +59,17 @@ HullLoads ComputeHullLoads(const PimpleSolver& s, std::span<const int> patches, 
   for (int k : patches) faces.push_back(ComputePatchFaceForces(s, k, rho, nu));
   std::vector<const PatchFaceForces*> views;
   for (const PatchFaceForces& f : faces) views.push_back(&f);
-  return SumHullLoads(s.mesh(), patches, views, pose, centre_body);
+  HullLoads loads = SumHullLoads(s.mesh(), patches, views, pose, centre_body);
+  SumOverRanks(s.part(), loads);
+  return loads;
+}
+
+void SumOverRanks(const DomainPart* part, HullLoads& l) {
+  if (!part || !part->parallel()) return;
+  double v[6] = {l.pressure.X, l.pressure.Y, l.pressure.N, l.viscous.X, l.viscous.Y, l.viscous.N};
+  part->SumInPlace(v);
+  l.pressure = {v[0], v[1], v[2]};
+  l.viscous = {v[3], v[4], v[5]};
 }
 
 PlanarLoad PrimeScales::ToPrime(const PlanarLoad& load) const {

@@ -46,6 +46,10 @@ PatchFaceForces ComputePatchFaceForces(const PimpleSolver& solver, int patch, do
 HullLoads SumHullLoads(const Mesh& mesh, std::span<const int> patches,
                        std::span<const PatchFaceForces* const> faces, const Pose& pose,
                        const Vector3& centre_body);
+// Sums loads of each rank's own faces over the ranks of `part` (in place;
+// nothing when serial or null).
+void SumOverRanks(const DomainPart* part, HullLoads& loads);
+// On MPI ranks the loads of every rank's faces (collective).
 HullLoads ComputeHullLoads(const PimpleSolver& solver, std::span<const int> patches, double rho,
                            double nu, const Pose& pose, const Vector3& centre_body);
 

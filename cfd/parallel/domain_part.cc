@@ -74,6 +74,17 @@ std::string FromFirstRank(const DomainPart* part, std::string text) {
   return text;
 }
 
+OwnedEntries OwnEntries(const DomainPart* part, std::span<const int> whole_cells) {
+  OwnedEntries out;
+  for (std::size_t i = 0; i < whole_cells.size(); ++i) {
+    const int local = part && part->parallel() ? part->OwnedCell(whole_cells[i]) : whole_cells[i];
+    if (local < 0) continue;
+    out.entries.push_back(static_cast<int>(i));
+    out.cells.push_back(local);
+  }
+  return out;
+}
+
 int DomainPart::OwnedCell(long long global) const {
   // The owned cells are in ascending global order.
   const auto end = cells.begin() + n_owned;

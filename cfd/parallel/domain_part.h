@@ -109,6 +109,16 @@ std::string FromFirstRank(const DomainPart* part, std::string text);
 // bit.
 void SyncCrossFaces(const DomainPart* part, std::span<double> face_values);
 
+// The entries of a list of cells of the undecomposed mesh (e.g. an actuator's,
+// built on the whole mesh, the same on every rank) that this rank owns: their
+// positions in the list and their local cells. Serially (null or one rank)
+// every entry, its cell as it is.
+struct OwnedEntries {
+  std::vector<int> entries;
+  std::vector<int> cells;
+};
+OwnedEntries OwnEntries(const DomainPart* part, std::span<const int> whole_cells);
+
 // Cells whose rows this rank solves: n_owned of a parallel part, else all.
 inline int OwnedCells(const DomainPart* part, const Mesh& mesh) {
   return part && part->parallel() ? part->n_owned : mesh.n_cells();

@@ -116,6 +116,13 @@ ActuatorDisk::ActuatorDisk(const Mesh& mesh, ActuatorDiskOptions options)
   Normalize(mesh, loads);
   CheckWalls(mesh);
   CheckResolution();
+  own_ = OwnEntries(nullptr, cells_);
+}
+
+void ActuatorDisk::Localize(std::shared_ptr<const DomainPart> part, int n_cells) {
+  part_ = std::move(part);
+  n_cells_ = n_cells;
+  own_ = OwnEntries(part_.get(), cells_);
 }
 
 std::vector<ActuatorDisk::CellLoad> ActuatorDisk::SampleCells(const Mesh& mesh) const {
@@ -202,9 +209,10 @@ void ActuatorDisk::AddBodyForce(double thrust, double torque, double rho, const 
   KELVIN_CHECK(rho > 0, "positive density");
   const Vector3 axial_E = -thrust * (R * options_.axis);
   const double tangential = options_.sense * torque;
-  for (std::size_t i = 0; i < cells_.size(); ++i) {
+  for (std::size_t k = 0; k < own_.entries.size(); ++k) {
+    const auto i = static_cast<std::size_t>(own_.entries[k]);
     const Vector3 force_E = axial_weight_[i] * axial_E + tangential * tangential_weight_[i] * (R * e_theta_[i]);
-    cell_source[cells_[i]] += force_E / (rho * volume_[i]);
+    cell_source[static_cast<std::size_t>(own_.cells[k])] += force_E / (rho * volume_[i]);
   }
 }
 
@@ -212,12 +220,13 @@ double ActuatorDisk::DiskVelocity(const VectorField& U, const std::function<Vect
                                   const Eigen::Matrix3d& R) const {
   const Vector3 through_E = -(R * options_.axis);
   double sum = 0.0;
-  for (std::size_t i = 0; i < cells_.size(); ++i) {
-    Vector3 u = U[cells_[i]];
-    if (body_velocity) u -= body_velocity(cells_[i]);
-    sum += axial_weight_[i] * u.dot(through_E);
+  for (std::size_t k = 0; k < own_.entries.size(); ++k) {
+    const int c = own_.cells[k];
+    Vector3 u = U[c];
+    if (body_velocity) u -= body_velocity(c);
+    sum += axial_weight_[static_cast<std::size_t>(own_.entries[k])] * u.dot(through_E);
   }
-  return sum;
+  return part_ ? part_->Sum(sum) : sum;
 }
 
 }  // namespace kelvin::cfd

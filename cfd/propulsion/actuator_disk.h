@@ -43,11 +43,13 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "cfd/field/field.h"
 #include "cfd/mesh/mesh.h"
+#include "cfd/parallel/domain_part.h"
 
 namespace kelvin::cfd {
 
@@ -81,6 +83,12 @@ class ActuatorDisk {
   // an option is bad. Warns (spdlog) when fewer than min_cells_across cells
   // span the diameter.
   ActuatorDisk(const Mesh& mesh, ActuatorDiskOptions options);
+
+  // On MPI ranks: a disk built on the undecomposed mesh (the same on every
+  // rank) acts on the rank's own cells of it; `n_cells` is the rank's local
+  // mesh size, the size of the cell sources. The disk's velocity is then the
+  // sum over the ranks (collective). Nothing changes serially.
+  void Localize(std::shared_ptr<const DomainPart> part, int n_cells);
 
   // Adds the body force of thrust T (N) and torque Q (N m) per unit mass
   // (m/s^2, earth axes) to cell_source (sized n_cells; an empty vector is
@@ -135,6 +143,8 @@ class ActuatorDisk {
   ActuatorDiskOptions options_;
   int n_cells_ = 0;
   std::vector<int> cells_;
+  std::shared_ptr<const DomainPart> part_;  // null serially
+  OwnedEntries own_;                        // the disk cells this rank holds, and their cells in its mesh
   std::vector<double> fraction_;
   std::vector<double> axial_weight_;      // sum 1
   std::vector<double> tangential_weight_; // sum of weight * r_c is 1 (1/m)

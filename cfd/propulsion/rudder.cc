@@ -209,7 +209,7 @@ Rudder::Rudder(const Mesh& mesh, RudderOptions options) : options_(std::move(opt
                                     "expected the rudder inside the mesh",
                                     options_.name, Format(options_.stock), what, angle * 180 / kPi, mesh.source()));
     }
-    BladePosition pos{angle, cells.cells, cells.weights, {}, InducedMatrix(cells, sample, options_.waterline_image)};
+    BladePosition pos{angle, cells.cells, cells.weights, {}, InducedMatrix(cells, sample, options_.waterline_image), {}};
     for (int c : pos.cells) pos.volumes.push_back(mesh.cell_volumes()[c]);
     CheckWalls(mesh, pos);
     const double share = cells.volume / box.Volume();
@@ -223,6 +223,7 @@ Rudder::Rudder(const Mesh& mesh, RudderOptions options) : options_(std::move(opt
     if (k == 0) blade_share_ = share;
     positions_.push_back(std::move(pos));
   }
+  Localize(nullptr, n_cells_);
   const BladePosition& amidships = positions_[static_cast<std::size_t>(n_side)];
   std::vector<double> v = amidships.volumes;
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
@@ -240,6 +241,13 @@ std::pair<std::size_t, double> Rudder::Bracket(double delta) const {
   const double u = (d + limit) / kAngleStep;
   const std::size_t k = std::min(static_cast<std::size_t>(std::floor(u)), positions_.size() - 2);
   return {k, u - static_cast<double>(k)};
+}
+
+void Rudder::Localize(std::shared_ptr<const DomainPart> part, int n_cells) {
+  part_ = std::move(part);
+  n_cells_ = n_cells;
+  sample_own_ = OwnEntries(part_.get(), sample_cells_);
+  for (BladePosition& pos : positions_) pos.own = OwnEntries(part_.get(), pos.cells);
 }
 
 Eigen::Matrix3d Rudder::Induced(double delta) const {
@@ -274,11 +282,13 @@ RudderState Rudder::Update(const PimpleSolver& solver, const BodyVelocity& body_
                            double delta, double rho, std::vector<Vector3>& cell_source) {
   KELVIN_CHECK(rho > 0, "positive density");
   Vector3 w_E = Vector3::Zero();
-  for (std::size_t i = 0; i < sample_cells_.size(); ++i) {
-    Vector3 u = solver.U()[sample_cells_[i]];
-    if (body_velocity) u -= body_velocity(sample_cells_[i]);
-    w_E += sample_weight_[i] * u;
+  for (std::size_t k = 0; k < sample_own_.entries.size(); ++k) {
+    const int c = sample_own_.cells[k];
+    Vector3 u = solver.U()[c];
+    if (body_velocity) u -= body_velocity(c);
+    w_E += sample_weight_[static_cast<std::size_t>(sample_own_.entries[k])] * u;
   }
+  if (part_) part_->SumInPlace(std::span<double>(w_E.data(), 3));
   const Vector3 w_B = R.transpose() * w_E;
   RudderState s;
   s.delta = delta;
@@ -310,8 +320,9 @@ void Rudder::Apply(double F_N, double delta, double rho, const Eigen::Matrix3d& 
   KELVIN_CHECK(static_cast<int>(cell_source.size()) == n_cells_, "one cell source per mesh cell");
   const Vector3 F_water_E = R * (-F_N * Vector3(-std::sin(delta), std::cos(delta), 0.0));
   auto add = [&](const BladePosition& pos, double share) {
-    for (std::size_t i = 0; i < pos.cells.size(); ++i) {
-      cell_source[static_cast<std::size_t>(pos.cells[i])] += share * pos.weights[i] * F_water_E / (rho * pos.volumes[i]);
+    for (std::size_t k = 0; k < pos.own.entries.size(); ++k) {
+      const auto i = static_cast<std::size_t>(pos.own.entries[k]);
+      cell_source[static_cast<std::size_t>(pos.own.cells[k])] += share * pos.weights[i] * F_water_E / (rho * pos.volumes[i]);
     }
   };
   if (positions_.size() == 1) {

@@ -61,6 +61,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -120,6 +121,12 @@ class Rudder {
   // bad option. Warns when the chord spans fewer than min_cells_across cells.
   Rudder(const Mesh& mesh, RudderOptions options);
 
+  // On MPI ranks: a rudder built on the undecomposed mesh (the same on every
+  // rank) samples and loads the rank's own cells of it; `n_cells` is the
+  // rank's local mesh size. The sampled inflow is then the sum over the
+  // ranks (collective). Nothing changes serially.
+  void Localize(std::shared_ptr<const DomainPart> part, int n_cells);
+
   // The model's normal-force coefficient C_N(alpha) (the lift curve).
   double NormalForceCoefficient(double alpha) const;
   // Samples the inflow, computes F_N at blade angle delta (rad) and adds the
@@ -163,6 +170,7 @@ class Rudder {
     // Sample-mean induced velocity per unit force on the water (columns:
     // unit force along grid x, y, z), times rho U: u = M F / (rho U).
     Eigen::Matrix3d induced = Eigen::Matrix3d::Zero();
+    OwnedEntries own;  // the cells this rank holds, and their cells in its mesh
   };
   // The tabulated positions k, k + 1 around delta and the blend s in [0, 1].
   std::pair<std::size_t, double> Bracket(double delta) const;
@@ -176,6 +184,8 @@ class Rudder {
   std::vector<BladePosition> positions_;  // -max_angle ... max_angle by 5 deg
   std::vector<int> sample_cells_;
   std::vector<double> sample_weight_;  // volume weights (sum 1)
+  OwnedEntries sample_own_;
+  std::shared_ptr<const DomainPart> part_;  // null serially
   double blade_share_ = 0.0;
   double cells_across_ = 0.0;
   State state_;

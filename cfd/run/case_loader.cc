@@ -328,26 +328,11 @@ void CheckRunSections(const ConfigNode& root, const Case& c) {
   }
 }
 
-// What does not run on ranks yet is refused before the mesh is cut.
-void RefuseOnRanks(const ConfigNode& root, int ranks) {
-  auto refuse = [&](const ConfigNode& node, const std::string& what) {
-    throw ConfigError(fmt::format("{}: {} does not run on {} MPI ranks yet; expected one rank (run it without mpirun)",
-                                  node.Where(), what, ranks));
-  };
-  if (root.Has("motion") && IsFreeMotion(root["motion"])) {
-    refuse(root["motion"], "a free-running motion (motion.kind: free)");
-  }
-  for (const char* section : {"propeller", "rudder", "maneuver"}) {
-    if (root.Has(section)) refuse(root[section], fmt::format("the {} section", section));
-  }
-}
-
 // Cuts the loaded whole mesh over the ranks of `comm` (more than one): the
 // case then holds the rank's local mesh and keeps the whole one for output.
-void DecomposeCase(const ConfigNode& root, Case& c, MPI_Comm comm) {
+void DecomposeCase(Case& c, MPI_Comm comm) {
   int size = 1;
   MPI_Comm_size(comm, &size);
-  RefuseOnRanks(root, size);
   const std::vector<int> cell_rank = PartitionCells(*c.mesh, size, comm, c.settings.partition);
   LocalDomain local = Decompose(*c.mesh, cell_rank, comm);
   c.whole_mesh = std::move(c.mesh);
@@ -377,7 +362,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   if (overrides.ranks != MPI_COMM_NULL) {
     int size = 1;
     MPI_Comm_size(overrides.ranks, &size);
-    if (size > 1) DecomposeCase(root, c, overrides.ranks);
+    if (size > 1) DecomposeCase(c, overrides.ranks);
   }
   const Mesh& mesh = *c.mesh;
   const Mesh& whole = c.whole_mesh ? *c.whole_mesh : mesh;

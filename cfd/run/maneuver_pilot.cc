@@ -179,7 +179,7 @@ void ManeuverPilot::RestoreArrays(const CheckpointArrays& arrays) {
   if (started_) controller_.Unpack(get("maneuver_controller"));
 }
 
-std::vector<std::string> ManeuverPilot::Finish(const PimpleSolver& /*solver*/) {
+std::vector<std::string> ManeuverPilot::Finish(const PimpleSolver& solver) {
   std::vector<std::string> lines;
   if (!started_) {
     return {fmt::format("WARNING: maneuver '{}' never executed: the run ended at t = {:.4g} s, before execute_time {} s",
@@ -197,7 +197,7 @@ std::vector<std::string> ManeuverPilot::Finish(const PimpleSolver& /*solver*/) {
   res.execute_times = controller_.execute_times();
   res.integrator_steps = static_cast<long>(trajectory_.size());
   sim::ComputeManeuverMetrics(res, controller_, ship_.limits.rudder_max, t_);
-  sim::WriteManeuverResult(res, settings_.output, "kelvin CFD (free running)");
+  OnFirstRank(solver.part(), [&] { sim::WriteManeuverResult(res, settings_.output, "kelvin CFD (free running)"); });
   if (!controller_.Finished(*this)) {
     lines.push_back(fmt::format("WARNING: maneuver '{}' not finished by t = {:.4g} s (time.end): its metrics are "
                                 "partial; run longer",

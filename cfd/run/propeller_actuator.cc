@@ -72,7 +72,9 @@ std::unique_ptr<BodyActuator> LoadPropellerActuator(const Case& c, const ConfigN
   std::unique_ptr<PropellerActuator> a;
   ValidateAt(node, [&] {
     sim::OpenWaterCurve curve = sim::CfdOpenWater(fr.ship, fr.ship_file.string());
-    ActuatorDisk disk(*c.mesh, DiskFromShip(fr, node, where));
+    // On ranks the disk is found on the whole mesh, as serially, and acts on the rank's cells of it.
+    ActuatorDisk disk(c.whole_mesh ? *c.whole_mesh : *c.mesh, DiskFromShip(fr, node, where));
+    if (c.part) disk.Localize(c.part, c.mesh->n_cells());
     a = std::make_unique<PropellerActuator>(Propeller(std::move(disk), std::move(curve), po), ro, c.settings.rho,
                                             fr.ship.propeller.y_P);
   });

@@ -58,7 +58,10 @@ std::unique_ptr<BodyActuator> LoadRudderActuator(const Case& c, const ConfigNode
   }
   std::unique_ptr<RudderActuator> a;
   ValidateAt(node, [&] {
-    a = std::make_unique<RudderActuator>(Rudder(*c.mesh, RudderFromShip(fr, node)), gear, order, c.settings.rho);
+    // On ranks the blade and its sample are found on the whole mesh, as serially.
+    Rudder rudder(c.whole_mesh ? *c.whole_mesh : *c.mesh, RudderFromShip(fr, node));
+    if (c.part) rudder.Localize(c.part, c.mesh->n_cells());
+    a = std::make_unique<RudderActuator>(std::move(rudder), gear, order, c.settings.rho);
   });
   return a;
 }

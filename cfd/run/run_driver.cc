@@ -369,12 +369,7 @@ HullLoads StepForces::ShipLoads(const Mesh& mesh, std::span<const int> patches, 
   std::vector<const PatchFaceForces*> faces;
   for (int k : patches) faces.push_back(&Faces(k));
   HullLoads l = SumHullLoads(mesh, patches, faces, pose, centre_body);
-  if (part_ && part_->parallel()) {
-    double v[6] = {l.pressure.X, l.pressure.Y, l.pressure.N, l.viscous.X, l.viscous.Y, l.viscous.N};
-    part_->SumInPlace(v);
-    l.pressure = {v[0], v[1], v[2]};
-    l.viscous = {v[3], v[4], v[5]};
-  }
+  SumOverRanks(part_, l);
   return l;
 }
 

@@ -7,7 +7,9 @@ Two cases of the quickstart, each run by `kelvin run` serially and with `--np 2`
 - resistance: data/cases/resistance/wigley_quick.yaml (the coarse Wigley at Fn 0.316, SST, linearized
   free surface, rigid-lid start, resistance report);
 - pmm: data/cases/captive_cfd/wigley_quick_case.yaml with a pure-yaw motion of the quick campaign
-  (r' = 0.2 at omega' = 1.2, 96 steps per period; captive loads every step).
+  (r' = 0.2 at omega' = 1.2, 96 steps per period; captive loads every step);
+- turning (tight only): the free-running 35 deg turn of data/cases/free_running/wigley_turning.yaml (the
+  body-force propeller and rudder, the simulator's maneuver controller) over its first 6 s.
 
 Each is run twice:
 
@@ -93,6 +95,16 @@ def pmm_case(poly, directory, tight, steps):
     return text
 
 
+def turning_case(poly, directory, tight, steps):
+    """The free-running 35 deg turn of data/cases/free_running/wigley_turning.yaml (body-force propeller and
+    rudder, the simulator's maneuver controller), cut to `steps` steps of 0.04 s."""
+    path = os.path.join(ROOT, "data/cases/free_running/wigley_turning.yaml")
+    text = open(path).read().replace("ship: ../../ships/wigley.yaml",
+                                     "ship: " + os.path.join(ROOT, "data/ships/wigley.yaml"))
+    text = edit(text, poly, directory, tight)
+    return text.replace("end: 80.0", f"end: {0.04 * steps!r}")
+
+
 def run(kelvin, case_text, work, name, ranks):
     d = os.path.join(work, f"{name}_np{ranks}")
     os.makedirs(d, exist_ok=True)
@@ -112,7 +124,13 @@ def step_series(out, pmm):
     """Per step, the forces compared: the hull's pressure and viscous force vectors (N), or the captive X, Y
     and N, each an array of one row per step."""
     with h5py.File(os.path.join(out, "history.h5")) as h:
-        names = ["captive/X", "captive/Y", "captive/N"] if pmm else ["forces/hull/pressure", "forces/hull/viscous"]
+        if pmm == "turning":  # every column on its own (their units differ)
+            names = ["body/trajectory", "body/velocity", "body/hull_load", "body/actuator_load", "rudder/state",
+                     "propeller/state"]
+            return {f"{n}[{k}]": np.asarray(h[n][:])[:, k:k + 1] for n in names for k in range(3)
+                    if np.any(np.asarray(h[n][:])[:, k] != 0)}
+        else:
+            names = ["captive/X", "captive/Y", "captive/N"] if pmm else ["forces/hull/pressure", "forces/hull/viscous"]
         return {n: np.asarray(h[n][:]).reshape(len(h[n]), -1) for n in names}
 
 
@@ -160,6 +178,8 @@ def main():
     ap.add_argument("--kelvin", required=True)
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 4])
     ap.add_argument("--steps", type=int, default=40, help="steps of the tight runs (default 40)")
+    ap.add_argument("--turning-steps", type=int, default=150,
+                    help="steps of 0.04 s of the free-running turn (default 150: release at 2 s, rudder at 5 s)")
     ap.add_argument("--work", default=None)
     ap.add_argument("--write", help="BENCHMARKS.md to update (default: print the section)")
     a = ap.parse_args()
@@ -176,6 +196,8 @@ def main():
     tight += tight_rows(kelvin, work, a.ranks, "resistance",
                         lambda s: resistance_case(res_poly, "@OUT@", True, s), a.steps, False)
     tight += tight_rows(kelvin, work, a.ranks, "pmm", lambda s: pmm_case(pmm_poly, "@OUT@", True, s), a.steps, True)
+    tight += tight_rows(kelvin, work, a.ranks, "turning",
+                        lambda s: turning_case(pmm_poly, "@OUT@", True, s), a.turning_steps, "turning")
     for r in tight:
         print(f"tight {r[0]} {r[1]} ranks: {r[2]} steps, max difference {r[3]:.2e} of the largest", flush=True)
 
@@ -200,7 +222,9 @@ def main():
         f"Tight: {a.steps} steps with every linear solver (momentum, pressure, k and omega) at relative tolerance "
         f"{TIGHT:g}; the largest difference at any step against the serial run of the hull's pressure force and "
         "viscous force vectors (resistance) or of X, Y and N (PMM), each relative to its largest magnitude over "
-        "the run. Acceptance: 1e-8.",
+        "the run; for the free-running turn (150 steps: release at 2 s, rudder executed at 5 s) each column of the "
+        "body's trajectory, velocities, hull and actuator loads, and of the rudder (angle, order, normal force) and "
+        "propeller (rate, thrust, torque) states relative to its largest value. Acceptance: 1e-8.",
         "",
         "| case | ranks | steps | max difference |",
         "|---|---:|---:|---:|",
