@@ -46,10 +46,12 @@ namespace {
 // the rank's mesh: its face in the undecomposed mesh less the patch start
 // there. Every face of the whole patch is one rank's own (the free surface
 // bounds owned cells only), which the gather of the faces checks.
+bool Parallel(const FreeSurfaceOnRanks& ranks) { return ranks.part && ranks.part->parallel(); }
+
 std::vector<int> SurfaceFaces(const Mesh& mesh, int patch_index, const FreeSurfaceOnRanks& ranks) {
   const Patch& patch = mesh.patches()[patch_index];
   std::vector<int> faces(static_cast<std::size_t>(patch.size));
-  if (!ranks.part || !ranks.part->parallel()) {
+  if (!Parallel(ranks)) {
     std::iota(faces.begin(), faces.end(), 0);
     return faces;
   }
@@ -72,7 +74,7 @@ LinearizedFreeSurface::LinearizedFreeSurface(const Mesh& mesh, int patch_index,
       mesh_(mesh),
       patch_index_(patch_index),
       options_(std::move(options)),
-      surface_(ranks.whole && ranks.part && ranks.part->parallel() ? *ranks.whole : mesh, patch_index),
+      surface_(Parallel(ranks) && ranks.whole ? *ranks.whole : mesh, patch_index),
       surface_face_(SurfaceFaces(mesh, patch_index, ranks)) {
   options_.Validate();
   const int n = surface_.size();
@@ -83,7 +85,7 @@ LinearizedFreeSurface::LinearizedFreeSurface(const Mesh& mesh, int patch_index,
   ref_value().assign(own, 0.0);
   ref_gradient().assign(own, 0.0);
   fraction().assign(own, 1.0);
-  if (ranks.part && ranks.part->parallel()) {
+  if (Parallel(ranks)) {
     part_ = ranks.part;
     const std::vector<double> mine(surface_face_.begin(), surface_face_.end());
     const std::vector<double> all = AllGather(*part_, mine);

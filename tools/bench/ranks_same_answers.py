@@ -120,17 +120,18 @@ def run(kelvin, case_text, work, name, ranks):
     return os.path.join(d, "out")
 
 
-def step_series(out, pmm):
+def step_series(out, kind):
     """Per step, the forces compared: the hull's pressure and viscous force vectors (N), or the captive X, Y
     and N, each an array of one row per step."""
     with h5py.File(os.path.join(out, "history.h5")) as h:
-        if pmm == "turning":  # every column on its own (their units differ)
+        if kind == "turning":  # every column on its own (their units differ)
             names = ["body/trajectory", "body/velocity", "body/hull_load", "body/actuator_load", "rudder/state",
                      "propeller/state"]
             return {f"{n}[{k}]": np.asarray(h[n][:])[:, k:k + 1] for n in names for k in range(3)
                     if np.any(np.asarray(h[n][:])[:, k] != 0)}
         else:
-            names = ["captive/X", "captive/Y", "captive/N"] if pmm else ["forces/hull/pressure", "forces/hull/viscous"]
+            names = ["captive/X", "captive/Y", "captive/N"] if kind == "pmm" else ["forces/hull/pressure",
+                                                                                  "forces/hull/viscous"]
         return {n: np.asarray(h[n][:]).reshape(len(h[n]), -1) for n in names}
 
 
@@ -158,11 +159,11 @@ def c_t(out):
         return float(h["C_T"][0]), int(h["converged_step"][0])
 
 
-def tight_rows(kelvin, work, ranks, name, make, steps, pmm):
+def tight_rows(kelvin, work, ranks, name, make, steps):
     rows = []
     series = {}
     for n in ranks:
-        series[n] = step_series(run(kelvin, make(steps), work, f"{name}_tight", n), pmm)
+        series[n] = step_series(run(kelvin, make(steps), work, f"{name}_tight", n), name)
     base = series[ranks[0]]
     steps = len(next(iter(base.values())))
     for n in ranks[1:]:
@@ -194,10 +195,10 @@ def main():
 
     tight = []
     tight += tight_rows(kelvin, work, a.ranks, "resistance",
-                        lambda s: resistance_case(res_poly, "@OUT@", True, s), a.steps, False)
-    tight += tight_rows(kelvin, work, a.ranks, "pmm", lambda s: pmm_case(pmm_poly, "@OUT@", True, s), a.steps, True)
+                        lambda s: resistance_case(res_poly, "@OUT@", True, s), a.steps)
+    tight += tight_rows(kelvin, work, a.ranks, "pmm", lambda s: pmm_case(pmm_poly, "@OUT@", True, s), a.steps)
     tight += tight_rows(kelvin, work, a.ranks, "turning",
-                        lambda s: turning_case(pmm_poly, "@OUT@", True, s), a.turning_steps, "turning")
+                        lambda s: turning_case(pmm_poly, "@OUT@", True, s), a.turning_steps)
     for r in tight:
         print(f"tight {r[0]} {r[1]} ranks: {r[2]} steps, max difference {r[3]:.2e} of the largest", flush=True)
 

@@ -151,13 +151,19 @@ int WorldSize() {
   return size;
 }
 
-// The serial reference: every rank runs it in a directory of its own.
-Loads SerialLoads(const std::string& text) {
+// The serial reference: every rank runs `text` in a directory of its own
+// (from `restart` if given) and `read` takes what it needs from the output
+// directory before the directory goes.
+template <typename Read>
+auto SerialRun(const std::string& text, Read read, const fs::path& restart = {}) {
   kelvin::testing::ScopedTempDir own;
-  const fs::path case_file = testing::WriteCase(own.path(), text);
-  const RunSummary s = RunIn(case_file, MPI_COMM_NULL);
+  const RunSummary s = RunIn(testing::WriteCase(own.path(), text), MPI_COMM_NULL, restart);
   EXPECT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
-  return ReadLoads(own / "out/history.h5");
+  return read(own / "out");
+}
+
+Loads SerialLoads(const std::string& text) {
+  return SerialRun(text, [](const fs::path& out) { return ReadLoads(out / "history.h5"); });
 }
 
 TEST(RunOnRanks, ShipLoadsMatchTheSerialRunAtEveryStep) {
@@ -301,13 +307,6 @@ SurfaceRun ReadSurfaceRun(const fs::path& out) {
   return r;
 }
 
-SurfaceRun SerialSurfaceRun(const std::string& text, const fs::path& restart = {}) {
-  kelvin::testing::ScopedTempDir own;
-  const RunSummary s = RunIn(testing::WriteCase(own.path(), text), MPI_COMM_NULL, restart);
-  EXPECT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
-  return ReadSurfaceRun(own / "out");
-}
-
 // The case stopped at t = 10 s (after the lid's release): its last checkpoint is the restart point.
 std::string SurfaceFirstHalf(std::string text) {
   text.replace(text.find("end: 20,"), 8, "end: 10,");
@@ -315,7 +314,7 @@ std::string SurfaceFirstHalf(std::string text) {
 }
 
 TEST(FreeSurfaceOnRanks, ForcesAndPatternMatchTheSerialRunAtEveryStep) {
-  const SurfaceRun serial = SerialSurfaceRun(kFreeSurfaceCase);
+  const SurfaceRun serial = SerialRun(kFreeSurfaceCase, ReadSurfaceRun);
   ASSERT_EQ(serial.force.size(), 40u * 6);
   SharedTempDir dir;
   const RunSummary s = RunIn(Write(dir / "ranks", kFreeSurfaceCase), MPI_COMM_WORLD);
@@ -349,11 +348,11 @@ TEST(FreeSurfaceOnRanks, ForcesAndPatternMatchTheSerialRunAtEveryStep) {
 // ranks continues serially, and a serial one on the ranks, to the end of
 // the uninterrupted serial run.
 TEST(FreeSurfaceOnRanks, CheckpointRestartsOnAnotherNumberOfRanks) {
-  const SurfaceRun serial = SerialSurfaceRun(kFreeSurfaceCase);
+  const SurfaceRun serial = SerialRun(kFreeSurfaceCase, ReadSurfaceRun);
   SharedTempDir dir;
   ASSERT_EQ(RunIn(Write(dir / "half_ranks", SurfaceFirstHalf(kFreeSurfaceCase)), MPI_COMM_WORLD).status,
             RunSummary::Status::kCompleted);
-  const SurfaceRun continued = SerialSurfaceRun(kFreeSurfaceCase, dir / "half_ranks/out/checkpoint.h5");
+  const SurfaceRun continued = SerialRun(kFreeSurfaceCase, ReadSurfaceRun, dir / "half_ranks/out/checkpoint.h5");
   const double to_serial = Mismatch(serial.force, continued.force), eta_serial = Mismatch(serial.eta, continued.eta);
   MPI_Barrier(MPI_COMM_WORLD);
   if (WorldRank() == 0) {
@@ -429,13 +428,7 @@ TEST(FreeRunningOnRanks, TheTurnMatchesTheSerialRunAtEveryStep) {
   MPI_Bcast(&meshed, 1, MPI_INT, 0, MPI_COMM_WORLD);
   ASSERT_EQ(meshed, 1) << "the grid of the turn could not be made";
   const std::string text = TurningCase(dir / "grid");
-  std::map<std::string, std::vector<double>> serial;
-  {
-    kelvin::testing::ScopedTempDir own;
-    const RunSummary s = RunIn(testing::WriteCase(own.path(), text), MPI_COMM_NULL);
-    ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
-    serial = ReadBody(own / "out/history.h5");
-  }
+  const auto serial = SerialRun(text, [](const fs::path& out) { return ReadBody(out / "history.h5"); });
   const RunSummary s = RunIn(Write(dir / "ranks", text), MPI_COMM_WORLD);
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
   EXPECT_THAT(s.message, HasSubstr("turning"));  // the maneuver report of rank 0, on every rank
