@@ -16,6 +16,7 @@
 
 #include "cfd/campaign/appendage_run.h"
 #include "cfd/campaign/worker_process.h"
+#include "cfd/parallel/domain_part.h"
 #include "cfd/run/captive_sampler.h"
 #include "cfd/run/run_driver.h"
 #include "data/report/progress.h"
@@ -277,6 +278,7 @@ struct Context {
   long budget = 0;    // > 0: steps allowed in this call
   long computed = 0;  // steps computed in this call
   std::function<void()> report;
+  MPI_Comm ranks = MPI_COMM_NULL;  // a worker's ranks (the run is decomposed over them)
 };
 
 std::vector<int> HullPatches(const Context& ctx, const Case& c) {
@@ -310,25 +312,38 @@ class JobFiles final : public Monitor {
  public:
   // `sampler`: null for a run with the propeller and rudder (its samples are
   // in its checkpoints).
-  JobFiles(Context& ctx, Job& job, const CaptiveSampler* sampler, RunCost cost)
-      : ctx_(ctx), job_(job), sampler_(sampler), cost_(cost) {}
+  // On ranks (`part`) rank 0 writes them; the cost is of all ranks.
+  JobFiles(Context& ctx, Job& job, const CaptiveSampler* sampler, RunCost cost,
+           const DomainPart* part)
+      : ctx_(ctx), job_(job), sampler_(sampler), cost_(cost), part_(part) {}
   void AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) override {
-    cost_.cpu_seconds += record.step_cpu_seconds;
+    cost_.cpu_seconds +=
+        part_ && part_->parallel() ? part_->Sum(record.step_cpu_seconds) : record.step_cpu_seconds;
     cost_.courant_max = std::max(cost_.courant_max, record.step.courant_max);
     ++ctx_.computed;
     job_.step = solver.step();
     if (ctx_.report) ctx_.report();
   }
   void BeforeCheckpoint(const PimpleSolver&) override {
-    if (sampler_) WriteSamples(job_.dir / "samples.h5", sampler_->samples(), job_.step, job_.steps, cost_);
-    WriteProgressFile(job_, seconds());
+    OnFirstRank(part_, [&] {
+      if (sampler_) WriteSamples(job_.dir / "samples.h5", sampler_->samples(), job_.step, job_.steps, cost_);
+      WriteProgressFile(job_, seconds());
+    });
   }
   void WriteResult(const Settle& settle) const {
-    WriteSamples(job_.dir / "result.h5", sampler_->samples(), job_.step, job_.steps, cost_, settle);
-    WriteProgressFile(job_, seconds());
+    OnFirstRank(part_, [&] {
+      WriteSamples(job_.dir / "result.h5", sampler_->samples(), job_.step, job_.steps, cost_,
+                   settle);
+      WriteProgressFile(job_, seconds());
+    });
   }
   // A run with the propeller and rudder: its means and cost.
   void WriteAppendageResult(const data::AppendageRun& run) const {
+    OnFirstRank(part_, [&] { WriteAppendageFile(run); });
+  }
+
+ private:
+  void WriteAppendageFile(const data::AppendageRun& run) const {
     data::H5Writer w(job_.dir / "result.h5");
     w.SetAttribute("/", "kind", "kelvin captive CFD run with propeller and rudder");
     w.SetAttribute("/", "cpu_seconds", cost_.cpu_seconds);
@@ -340,13 +355,12 @@ class JobFiles final : public Monitor {
     w.Commit();
     WriteProgressFile(job_, seconds());
   }
-
- private:
   double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
   Context& ctx_;
   Job& job_;
   const CaptiveSampler* sampler_;
   RunCost cost_;
+  const DomainPart* part_;
   Clock::time_point start_ = Clock::now();
 };
 
@@ -382,6 +396,23 @@ Resume ReadResume(const Job& job) {
 // budget ran out first.
 bool ExecuteAppendageJob(Context& ctx, Job& job);
 
+// Creates the run's directory, locks it against a second process and removes
+// what a killed earlier attempt left half-written; on ranks rank 0 does this
+// and holds the lock (in `lock`).
+void ClaimRunDirectory(const Context& ctx, const Job& job, std::optional<RunLock>& lock) {
+  OnFirstRank(ctx.ranks, [&] {
+    fs::create_directories(job.dir);
+    lock.emplace(job.dir, job.name);
+    data::RemoveStaleTemporaries(job.dir);
+  });
+}
+
+// The cells of the run's (whole) mesh.
+double CellCount(const Case& c) {
+  return c.part && c.part->parallel() ? static_cast<double>(c.part->n_global_cells)
+                                      : c.mesh->n_cells();
+}
+
 // Runs a job's case through the driver with the campaign's checkpoints
 // (<dir>/checkpoint.h5) and step budget, restarting from `restart` if set;
 // sets job.step. Empty when the budget ran out first; a diverged run throws.
@@ -411,9 +442,9 @@ bool ExecuteJob(Context& ctx, Job& job) {
   overrides.dt = job.dt;
   overrides.end_time = job.dt * job.steps;
   overrides.steady = job.settle;
-  fs::create_directories(job.dir);
-  const RunLock lock(job.dir, job.name);
-  data::RemoveStaleTemporaries(job.dir);  // what a killed earlier attempt left half-written
+  overrides.ranks = ctx.ranks;
+  std::optional<RunLock> lock;
+  ClaimRunDirectory(ctx, job, lock);
   const fs::path checkpoint = job.dir / "checkpoint.h5";
   Case c = LoadCaseFile(ctx.file.cfd.case_file, overrides);
   const PrimeScales scales{c.settings.rho, ctx.ship.Lpp,
@@ -424,9 +455,9 @@ bool ExecuteJob(Context& ctx, Job& job) {
   c.force_patches = HullPatches(ctx, c);
   CaptiveSampler sampler(c, c.force_patches, scales);
   Resume resume = ReadResume(job);
-  resume.cost.cells = c.mesh->n_cells();
+  resume.cost.cells = CellCount(c);
   sampler.Restore(std::move(resume.samples));
-  JobFiles files(ctx, job, &sampler, resume.cost);
+  JobFiles files(ctx, job, &sampler, resume.cost, c.part.get());
   Monitor* monitors[] = {&sampler, &files};
   const std::optional<RunDriverSummary> driven =
       DriveJob(ctx, job, c, monitors, resume.restart ? checkpoint : fs::path());
@@ -442,9 +473,11 @@ bool ExecuteJob(Context& ctx, Job& job) {
     job.steps = job.step;  // a settled run ends early
   }
   files.WriteResult(settle);
-  std::error_code ec;
-  fs::remove(checkpoint, ec);
-  fs::remove(job.dir / "samples.h5", ec);
+  OnFirstRank(ctx.ranks, [&] {
+    std::error_code ec;
+    fs::remove(checkpoint, ec);
+    fs::remove(job.dir / "samples.h5", ec);
+  });
   return true;
 }
 
@@ -456,23 +489,25 @@ bool ExecuteAppendageJob(Context& ctx, Job& job) {
   overrides.dt = job.dt;
   overrides.end_time = job.dt * job.steps;
   overrides.output = job.dir;
-  fs::create_directories(job.dir);
-  const RunLock lock(job.dir, job.name);
-  data::RemoveStaleTemporaries(job.dir);
+  overrides.ranks = ctx.ranks;
+  std::optional<RunLock> lock;
+  ClaimRunDirectory(ctx, job, lock);
   const fs::path checkpoint = job.dir / "checkpoint.h5";
   Case c = LoadAppendageCase(ctx.file, *job.appendage, overrides);
   c.force_patches = HullPatches(ctx, c);
   FreeRunningCoupler coupler(c);
   AppendageSampler sampler(c, coupler);
   RunCost cost;
-  cost.cells = c.mesh->n_cells();
-  JobFiles files(ctx, job, nullptr, cost);
+  cost.cells = CellCount(c);
+  JobFiles files(ctx, job, nullptr, cost, c.part.get());
   Monitor* monitors[] = {&coupler, &sampler, &files};
   if (!DriveJob(ctx, job, c, monitors, fs::exists(checkpoint) ? checkpoint : fs::path())) return false;
   const double from = ctx.file.cfd.steady_ramp + 0.5 * ctx.file.cfd.steady_duration - 0.5 * job.dt;
   files.WriteAppendageResult(sampler.Mean(*job.appendage, from));
-  std::error_code ec;
-  fs::remove(checkpoint, ec);
+  OnFirstRank(ctx.ranks, [&] {
+    std::error_code ec;
+    fs::remove(checkpoint, ec);
+  });
   return true;
 }
 
@@ -484,8 +519,8 @@ void ReadProgressFile(Job& job) {
   if (in >> step >> steps) job.step = step;
 }
 
-pid_t StartWorker(const data::CampaignFile& f, const fs::path& exe, Job& job) {
-  return SpawnWorker(exe, {"--quiet", "captive", f.path.string(), "--run", job.name, "--no-progress"},
+pid_t StartWorker(const data::CampaignFile& f, const WorkerProgram& program, Job& job) {
+  return SpawnWorker(program, {"--quiet", "captive", f.path.string(), "--run", job.name, "--no-progress"},
                      job.dir / "log.txt", job.name);
 }
 
@@ -624,13 +659,13 @@ int AdvanceProgress(Job& job) {
 }
 
 // Starts worker processes for up to `slots` jobs left; returns how many.
-int StartWorkers(const data::CampaignFile& f, const fs::path& exe, int slots,
+int StartWorkers(const data::CampaignFile& f, const WorkerProgram& program, int slots,
                  std::vector<Job>& jobs) {
   int started = 0;
   for (Job& j : jobs) {
     if (started >= slots) break;
     if (j.state != Job::State::kLeft) continue;
-    j.pid = StartWorker(f, exe, j);
+    j.pid = StartWorker(f, program, j);
     j.state = Job::State::kRunning;
     ++j.starts;
     ++started;
@@ -639,7 +674,7 @@ int StartWorkers(const data::CampaignFile& f, const fs::path& exe, int slots,
 }
 
 // Records the end of worker `pid` (exit status `status`): its job is done
-// when it exited with 0 and wrote result.h5, failed otherwise with the last
+// when it exited with 0 and wrote result.h5, failed otherwise with the error
 // line of its log. Returns the number of workers that ended (0 or 1).
 int FinishWorker(pid_t pid, int status, std::vector<Job>& jobs, CampaignRunSummary& summary) {
   int finished = 0;
@@ -656,13 +691,13 @@ int FinishWorker(pid_t pid, int status, std::vector<Job>& jobs, CampaignRunSumma
       j.state = Job::State::kLeft;
     } else {
       j.state = Job::State::kFailed;
-      j.message = LastLine(j.dir / "log.txt");
+      j.message = ErrorLine(j.dir / "log.txt");
     }
   }
   return finished;
 }
 
-// Throws InputError naming every failed run and the last line of its log.
+// Throws InputError naming every failed run and the error line of its log.
 void ThrowIfRunsFailed(const data::CampaignFile& f, const std::vector<Job>& jobs) {
   std::string failures;
   for (const Job& j : jobs) {
@@ -679,10 +714,11 @@ void RunWorkers(const data::CampaignFile& f, const CampaignRunOptions& options, 
                 std::vector<Job>& jobs, CampaignRunSummary& summary, ProgressTable& progress) {
   if (options.executable.empty())
     throw ArgumentError("--jobs > 1 needs the path of the kelvin program");
+  const WorkerProgram program{options.executable, options.launcher, options.ranks_per_run};
   progress.Print(true);
   int running = 0;
   for (;;) {
-    running += StartWorkers(f, options.executable, n_jobs - running, jobs);
+    running += StartWorkers(f, program, n_jobs - running, jobs);
     if (running == 0) break;
     int status = 0;
     const pid_t pid = waitpid(-1, &status, WNOHANG);
@@ -804,18 +840,23 @@ CampaignRunSummary RunCfdCampaign(const data::CampaignFile& f, const CampaignRun
   const CaseSettings settings = CampaignCaseSettings(f, ship);
   std::vector<Job> jobs = PlanJobs(f, ship, settings.time.dt);
   const int n_jobs = options.jobs > 0 ? options.jobs : f.cfd.jobs;
-  if (n_jobs > 1 && options.stop_after_steps > 0) {
+  const bool workers = n_jobs > 1 || options.ranks_per_run > 1;
+  if (workers && options.stop_after_steps > 0) {
     throw ArgumentError(
-        "--stop-after-steps runs the campaign in one process; use it with --jobs 1");
+        "--stop-after-steps runs the campaign in one process; use it with --jobs 1 and no --np");
+  }
+  if (options.ranks_per_run > 1 && options.launcher.empty()) {
+    throw ArgumentError(
+        fmt::format("--np {}: no MPI launcher to start the runs with", options.ranks_per_run));
   }
   CampaignRunSummary summary;
   summary.output = options.output.empty() ? f.cfd.directory / (f.name + ".h5") : options.output;
   summary.runs_total = static_cast<int>(jobs.size());
   ReadJobStates(jobs);
   ProgressTable progress(f, options, jobs, summary);
-  Context ctx{f, settings, ship, options.stop_after_steps, 0, {}};
+  Context ctx{f, settings, ship, options.stop_after_steps, 0, {}, options.ranks};
   if (!options.only_run.empty()) return RunOnly(ctx, options.only_run, jobs, summary);
-  if (n_jobs <= 1) {
+  if (!workers) {
     if (!RunSerial(ctx, jobs, summary, progress)) return summary;  // stopped by the step budget
     ThrowIfRunsFailed(f, jobs);
   } else {

@@ -14,8 +14,12 @@
 // run gives the steady criterion the loads of the steps before it, from its
 // samples) and skips the finished ones; the result equals that of an
 // uninterrupted campaign bit for bit. With jobs > 1 the runs execute as separate `kelvin captive --run`
-// processes, at most `jobs` at a time, and the parent prints the table.
+// processes, at most `jobs` at a time, and the parent prints the table. With ranks_per_run > 1 each of
+// them is started under the MPI launcher (`mpiexec -n ranks_per_run kelvin captive --run ...`) and
+// decomposes its case over its ranks, rank 0 writing the run's files.
 #pragma once
+
+#include <mpi.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -31,8 +35,15 @@ struct CampaignRunOptions {
   long stop_after_steps = 0;         // > 0: stop, as if killed, after this many steps in this call
   std::string only_run;              // run just this run and write its result (worker mode)
   std::filesystem::path executable;  // the kelvin program (for jobs > 1)
-  std::filesystem::path output;      // campaign HDF5 (default: <cfd.directory>/<name>.h5)
-  bool progress = true;              // print the progress table
+  // Ranks of each run: > 1 starts every run, even with jobs 1, as a worker
+  // under `launcher` (mpiexec).
+  int ranks_per_run = 1;
+  std::filesystem::path launcher;
+  // Worker mode under a launcher: the ranks only_run is decomposed over
+  // (MPI_COMM_NULL: this process alone).
+  MPI_Comm ranks = MPI_COMM_NULL;
+  std::filesystem::path output;  // campaign HDF5 (default: <cfd.directory>/<name>.h5)
+  bool progress = true;          // print the progress table
   std::FILE* stream = stdout;
 };
 

@@ -113,7 +113,7 @@ void RunSerial(const fs::path& case_file, const ManeuverCampaignOptions& options
 
 pid_t StartWorker(const fs::path& case_file, const ManeuverCampaignOptions& options, const fs::path& output,
                   ManeuverRun& r) {
-  return SpawnWorker(options.executable,
+  return SpawnWorker(WorkerProgram{options.executable, {}, 1},
                      {"--quiet", "run", fs::absolute(case_file).string(), "-m", r.maneuver, "-o",
                       fs::absolute(output).string(), "--jobs", "1", "--no-progress"},
                      r.directory / "log.txt", r.name);
@@ -132,7 +132,7 @@ void FinishWorker(ManeuverRun& r, int status, std::FILE* stream) {
     return;
   } else {
     r.state = code > 128 ? State::kInterrupted : State::kFailed;
-    r.message = LastLine(r.directory / "log.txt");
+    r.message = ErrorLine(r.directory / "log.txt");
     if (code != kDivergedExit && code <= 128) r.message = fmt::format("exit {}: {}", code, r.message);
   }
   std::fprintf(stream, "%s: %s\n", r.maneuver.c_str(), StateName(r).c_str());

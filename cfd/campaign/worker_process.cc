@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <string_view>
 
 #include "data/schema/errors.h"
 
@@ -16,32 +17,65 @@ namespace kelvin::cfd {
 
 namespace fs = std::filesystem;
 
-pid_t SpawnWorker(const fs::path& exe, const std::vector<std::string>& args, const fs::path& log,
-                  const std::string& run) {
+namespace {
+
+// True for a variable that Open MPI puts in the environment of a process it
+// started or initialized as an MPI process (singleton or rank): inherited by
+// a launcher, they make it believe it runs inside that job (a singleton's
+// OMPI_MCA_ess=singleton fails mpiexec, its OMPI_MCA_pmix=isolated crashes
+// it). User settings such as OMPI_MCA_rmaps_base_oversubscribe stay.
+bool FromAnMpiLaunch(std::string_view entry) {
+  const std::string_view name = entry.substr(0, entry.find('='));
+  for (const std::string_view prefix : {"PMIX_", "OMPI_COMM_WORLD_", "OMPI_MCA_orte_"}) {
+    if (name.substr(0, prefix.size()) == prefix) return true;
+  }
+  for (const std::string_view launch :
+       {"OMPI_MCA_ess", "OMPI_MCA_pmix", "OMPI_COMMAND", "OMPI_ARGV", "OMPI_APP_CTX_NUM_PROCS",
+        "OMPI_NUM_APP_CTX", "OMPI_FIRST_RANKS", "OMPI_UNIVERSE_SIZE", "OMPI_FILE_LOCATION"}) {
+    if (name == launch) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+pid_t SpawnWorker(const WorkerProgram& program, const std::vector<std::string>& args,
+                  const fs::path& log, const std::string& run) {
+  const bool on_ranks = program.ranks > 1;
+  const fs::path& exe = on_ranks ? program.launcher : program.executable;
   fs::create_directories(log.parent_path());
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   std::vector<std::string> all = {exe.string()};
+  if (on_ranks)
+    all.insert(all.end(), {"-n", std::to_string(program.ranks), program.executable.string()});
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
+  std::vector<char*> env;
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (!on_ranks || !FromAnMpiLaunch(*e)) env.push_back(*e);
+  }
+  env.push_back(nullptr);
   pid_t pid = -1;
-  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), env.data());
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw InputError(fmt::format("cannot start {} for run '{}' (error {})", exe.string(), run, rc));
   return pid;
 }
 
-std::string LastLine(const fs::path& path) {
+std::string ErrorLine(const fs::path& path) {
   std::ifstream in(path);
-  std::string line, last;
+  std::string line, last, error;
   while (std::getline(in, line)) {
-    if (!line.empty()) last = line;
+    if (line.empty()) continue;
+    last = line;
+    if (error.empty() && line.rfind("kelvin: error:", 0) == 0) error = line;
   }
-  return last;
+  return error.empty() ? last : error;
 }
 
 bool DiedStartingMpi(const fs::path& log) {

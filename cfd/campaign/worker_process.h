@@ -1,7 +1,7 @@
 // What the campaigns (captive: cfd_campaign.h; maneuvers:
 // maneuver_campaign.h) share to run their jobs: a worker process per run (a
-// kelvin subcommand, its output into the run's log), the last line of that
-// log for the failure report, and an exclusive lock on a run directory.
+// kelvin subcommand, its output into the run's log), the error line of
+// that log for the failure report, and an exclusive lock on a run directory.
 #pragma once
 
 #include <sys/types.h>
@@ -12,14 +12,26 @@
 
 namespace kelvin::cfd {
 
-// Starts `exe args...` with stdout and stderr into `log` (created or
-// truncated); returns its pid. Throws InputError naming `run` if it cannot
-// start.
-pid_t SpawnWorker(const std::filesystem::path& exe, const std::vector<std::string>& args,
+// The program a campaign starts for each run: kelvin itself, or kelvin under
+// an MPI launcher (`launcher -n ranks kelvin ...`), so that each run is
+// decomposed over its own ranks (cfd/README.md "MPI ranks").
+struct WorkerProgram {
+  std::filesystem::path executable;  // the kelvin program
+  std::filesystem::path launcher;    // mpiexec; used when ranks > 1
+  int ranks = 1;
+};
+
+// Starts `program args...` with stdout and stderr into `log` (created or
+// truncated), under a launcher without the variables of an MPI launch this
+// process may carry (it may itself be an MPI singleton); returns its pid (the launcher's on ranks).
+// Throws InputError naming `run` if it cannot start.
+pid_t SpawnWorker(const WorkerProgram& program, const std::vector<std::string>& args,
                   const std::filesystem::path& log, const std::string& run);
 
-// The last non-empty line of a text file ("" if there is none).
-std::string LastLine(const std::filesystem::path& path);
+// The first "kelvin: error:" line of a worker's log, else its last non-empty
+// line ("" if there is none): under a launcher, the launcher's own report of
+// the failed rank comes after kelvin's message.
+std::string ErrorLine(const std::filesystem::path& path);
 
 // True when a worker's log shows it died while MPI started up (Open MPI's
 // "before MPI_INIT completed"): a transient failure of the MPI singleton

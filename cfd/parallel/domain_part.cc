@@ -47,13 +47,33 @@ void SyncCrossFaces(const DomainPart* part, std::span<double> face_values) {
   for (std::size_t l = 0; l < part->cross_leaves.size(); ++l) face_values[part->cross_leaves[l]] = -buffer[roots + l];
 }
 
+namespace {
+
+MPI_Comm CommOf(const DomainPart* part) {
+  return part && part->parallel() ? part->comm : MPI_COMM_NULL;
+}
+
+bool SeveralRanks(MPI_Comm comm) {
+  int size = 1;
+  if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &size);
+  return size > 1;
+}
+
+}  // namespace
+
 void OnFirstRank(const DomainPart* part, const std::function<void()>& write) {
-  if (!part || !part->parallel()) {
+  OnFirstRank(CommOf(part), write);
+}
+
+void OnFirstRank(MPI_Comm comm, const std::function<void()>& write) {
+  if (!SeveralRanks(comm)) {
     write();
     return;
   }
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
   std::string error;
-  if (part->rank == 0) {
+  if (rank == 0) {
     try {
       write();
     } catch (const std::exception& e) {  // a DataFileError, or the file system's own
@@ -61,16 +81,20 @@ void OnFirstRank(const DomainPart* part, const std::function<void()>& write) {
       if (error.empty()) error = "a file could not be written";
     }
   }
-  error = FromFirstRank(part, std::move(error));
+  error = FromFirstRank(comm, std::move(error));
   if (!error.empty()) throw DataFileError(error);
 }
 
 std::string FromFirstRank(const DomainPart* part, std::string text) {
-  if (!part || !part->parallel()) return text;
+  return FromFirstRank(CommOf(part), std::move(text));
+}
+
+std::string FromFirstRank(MPI_Comm comm, std::string text) {
+  if (!SeveralRanks(comm)) return text;
   int n = static_cast<int>(text.size());
-  MPI_Bcast(&n, 1, MPI_INT, 0, part->comm);
+  MPI_Bcast(&n, 1, MPI_INT, 0, comm);
   text.resize(static_cast<std::size_t>(n));
-  MPI_Bcast(text.data(), n, MPI_CHAR, 0, part->comm);
+  MPI_Bcast(text.data(), n, MPI_CHAR, 0, comm);
   return text;
 }
 

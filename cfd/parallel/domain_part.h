@@ -97,10 +97,14 @@ std::vector<double> AllGather(const DomainPart& part, std::span<const double> lo
 // on every rank as a DataFileError with its message, so all stop alike
 // (collective). Serially it runs `write` as it is.
 void OnFirstRank(const DomainPart* part, const std::function<void()>& write);
+// The same over the ranks of `comm` (MPI_COMM_NULL or a single rank: runs
+// `write` as it is), for what a run does before its mesh is decomposed.
+void OnFirstRank(MPI_Comm comm, const std::function<void()>& write);
 
 // Rank 0's `text` on every rank (collective; `text` itself when serial):
 // what rank 0 reports of a file only it writes.
 std::string FromFirstRank(const DomainPart* part, std::string text);
+std::string FromFirstRank(MPI_Comm comm, std::string text);
 
 // Gives the faces between ranks one value: each leaf copy of a face flux
 // (local orientation against the whole mesh's) becomes minus the root's

@@ -52,17 +52,27 @@ TEST(KelvinCliTest, HelpForUnknownCommandExitsTwo) {
   EXPECT_THAT(r.output, HasSubstr("unknown command 'frobnicate'"));
 }
 
-// Under an MPI launcher only `kelvin run` decomposes its case; every rank of
-// another command would do the whole work and write the same files: one
+// Under an MPI launcher only `kelvin run` and the workers of a CFD captive
+// campaign decompose their case; every rank of another command (or of a
+// whole campaign) would do the whole work and write the same files: one
 // clear error instead (issue 23).
 TEST(KelvinCliTest, MpiLauncherIsRefusedForCommandsThatDoNotDecompose) {
-  const std::string campaign = (kelvin::testing::SourceDir() / "data/cases/captive_cfd/block2d_campaign.yaml").string();
+  const std::filesystem::path cases = kelvin::testing::SourceDir() / "data/cases";
   for (const char* env : {"OMPI_COMM_WORLD_SIZE=2", "PMI_SIZE=4"}) {
-    const auto r = RunCommand(std::string("env ") + env + " " + Kelvin() + " captive " + campaign);
+    const auto r = RunCommand(std::string("env ") + env + " " + Kelvin() + " identify -o /dev/null " +
+                              (cases / "captive_cfd/block2d_campaign.yaml").string());
     EXPECT_EQ(r.exit_code, 2) << env;
     EXPECT_EQ(CountLines(r.output), 1) << r.output;
-    EXPECT_THAT(r.output, HasSubstr("kelvin captive was started by an MPI launcher on"));
-    EXPECT_THAT(r.output, HasSubstr("only 'kelvin run' runs on MPI ranks"));
+    EXPECT_THAT(r.output, HasSubstr("kelvin identify was started by an MPI launcher on"));
+    EXPECT_THAT(r.output, HasSubstr("only 'kelvin run' and the workers of 'kelvin captive --np' run on MPI ranks"));
+    // A whole captive campaign, CFD or virtual, is refused by captive itself.
+    for (const char* campaign : {"captive_cfd/block2d_campaign.yaml", "kvlcc2_virtual_captive.yaml"}) {
+      const auto c = RunCommand(std::string("env ") + env + " " + Kelvin() + " captive " + (cases / campaign).string());
+      EXPECT_EQ(c.exit_code, 2) << campaign;
+      EXPECT_EQ(CountLines(c.output), 1) << c.output;
+      EXPECT_THAT(c.output, HasSubstr("kelvin captive was started by an MPI launcher on"));
+      EXPECT_THAT(c.output, HasSubstr("only the workers of a CFD campaign (--run NAME, started by --np) run on ranks"));
+    }
   }
   // A launcher's single rank is a serial run.
   const auto one = RunCommand("env OMPI_COMM_WORLD_SIZE=1 " + Kelvin() + " --version");

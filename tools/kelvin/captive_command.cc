@@ -3,6 +3,8 @@
 // captive HDF5 schema that `kelvin identify` reads. Solver mmg: virtual tests
 // from the ship's MMG model; solver cfd: resumable CFD runs (cfd/campaign).
 #include <fmt/format.h>
+#include <mpi.h>
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -11,6 +13,7 @@
 #include <string>
 
 #include "cfd/campaign/cfd_campaign.h"
+#include "cfd/parallel/petsc_context.h"
 #include "data/schema/campaign_file.h"
 #include "data/schema/captive_io.h"
 #include "data/schema/errors.h"
@@ -25,6 +28,7 @@ struct CaptiveArgs {
   std::string campaign_file;
   std::string output;
   int jobs = 0;
+  int np = 0;
   long stop_after_steps = 0;
   std::string run;
   bool no_progress = false;
@@ -33,6 +37,19 @@ struct CaptiveArgs {
 void RunCfd(const data::CampaignFile& file, const CaptiveArgs& a) {
   cfd::CampaignRunOptions o;
   o.jobs = a.jobs;
+  if (a.np > 1) {
+    o.ranks_per_run = a.np;
+    o.launcher = FindLauncher(a.np);
+  }
+  // A worker that an MPI launcher started (by --np): its run is decomposed
+  // over the launch's ranks, and rank 0 reports.
+  int rank = 0;
+  if (LauncherRanks() > 1) {
+    cfd::EnsurePetsc();
+    o.ranks = MPI_COMM_WORLD;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank != 0) spdlog::set_level(spdlog::level::err);
+  }
   o.stop_after_steps = a.stop_after_steps;
   o.only_run = a.run;
   o.executable = SelfExecutable();
@@ -40,8 +57,10 @@ void RunCfd(const data::CampaignFile& file, const CaptiveArgs& a) {
   o.progress = !a.no_progress;
   const cfd::CampaignRunSummary s = cfd::RunCfdCampaign(file, o);
   if (!a.run.empty()) {
-    fmt::print("run '{}': {} ({} steps computed)\n", a.run, s.runs_done == 1 ? "done" : "stopped",
-               s.steps_computed);
+    if (rank == 0) {
+      fmt::print("run '{}': {} ({} steps computed)\n", a.run, s.runs_done == 1 ? "done" : "stopped",
+                 s.steps_computed);
+    }
     return;
   }
   if (!s.complete) {
@@ -54,13 +73,23 @@ void RunCfd(const data::CampaignFile& file, const CaptiveArgs& a) {
 }
 
 void RunCaptive(const CaptiveArgs& a) {
+  // Under a launcher only a CFD run's worker decomposes; every rank of a
+  // whole campaign would compute every run and write the same files.
+  if (const int launched = LauncherRanks(); launched > 1 && (a.run.empty() || a.np > 1)) {
+    throw ArgumentError(fmt::format(
+        "kelvin captive was started by an MPI launcher on {} ranks; only the workers of a CFD "
+        "campaign (--run NAME, started by --np) run on ranks; expected one process, with --np N "
+        "for runs on N ranks",
+        launched));
+  }
   const data::CampaignFile file = data::LoadCampaignFile(a.campaign_file);
   if (file.solver == data::CampaignFile::Solver::kCfd) {
     RunCfd(file, a);
     return;
   }
-  if (a.jobs > 0 || a.stop_after_steps > 0 || !a.run.empty()) {
-    throw ArgumentError("--jobs, --stop-after-steps and --run are for campaigns with solver: cfd");
+  if (a.jobs > 0 || a.np > 0 || a.stop_after_steps > 0 || !a.run.empty()) {
+    throw ArgumentError(
+        "--jobs, --np, --stop-after-steps and --run are for campaigns with solver: cfd");
   }
   const data::CaptiveCampaign campaign = ident::RunCampaign(file);
   const std::string out = a.output.empty() ? "results/" + file.name + ".h5" : a.output;
@@ -88,6 +117,10 @@ Command AddCaptiveCommand(CLI::App& app) {
   cmd->add_option("-j,--jobs", args->jobs,
                   "cfd: runs at the same time (default: cfd.jobs of the file)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--np", args->np,
+                  "cfd: each run on N MPI ranks (its worker starts under mpiexec -n N; with "
+                  "--jobs J, J runs of N ranks at a time)")
+      ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--stop-after-steps", args->stop_after_steps,
                   "cfd: stop as if killed after this many time steps (resume by running again)")
       ->check(CLI::PositiveNumber);

@@ -1,9 +1,14 @@
 #include "tools/kelvin/commands.h"
 
+#include <fmt/format.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <exception>
 #include <string>
+
+#include "data/schema/errors.h"
 
 namespace kelvin::cli {
 
@@ -28,6 +33,36 @@ std::filesystem::path SelfExecutable() {
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::filesystem::path() : self;
+}
+
+std::filesystem::path FindLauncher(int np) {
+  std::filesystem::path launcher;
+  if (const char* path = std::getenv("PATH")) {
+    const std::string dirs = path;
+    for (std::size_t start = 0; start <= dirs.size();) {
+      const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+      const std::filesystem::path candidate =
+          std::filesystem::path(dirs.substr(start, end - start)) / "mpiexec";
+      if (end > start && access(candidate.c_str(), X_OK) == 0) {
+        launcher = candidate;
+        break;
+      }
+      start = end + 1;
+    }
+  }
+  if (launcher.empty()) {
+    throw ArgumentError(fmt::format(
+        "--np {}: no MPI launcher 'mpiexec' on PATH; expected Open MPI's (Debian package "
+        "openmpi-bin, which tools/setup installs), or start kelvin under your cluster's "
+        "launcher yourself",
+        np));
+  }
+  // Open MPI refuses root unless told; the user asked for the ranks.
+  if (geteuid() == 0) {
+    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
+    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
+  }
+  return launcher;
 }
 
 int LauncherRanks() {

@@ -34,6 +34,10 @@ std::vector<Command> AddCommands(CLI::App& app);
 // campaigns start as worker processes.
 std::filesystem::path SelfExecutable();
 
+// The MPI launcher for `--np np` (mpiexec on PATH; allowed to run as root when
+// kelvin does). Throws ArgumentError naming --np when there is none.
+std::filesystem::path FindLauncher(int np);
+
 // Ranks an MPI launcher started this process among (Open MPI's and the PMI
 // variables), 1 without one.
 int LauncherRanks();

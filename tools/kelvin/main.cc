@@ -65,14 +65,17 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  // Under an MPI launcher only `kelvin run` decomposes its case; every rank
-  // of any other command would do the whole work and write the same files.
+  // Under an MPI launcher only `kelvin run` and the captive campaign's
+  // workers (`kelvin captive --run`, which checks itself) decompose their
+  // case; every rank of any other command would do the whole work and write
+  // the same files.
   if (const int ranks = kelvin::cli::LauncherRanks(); ranks > 1) {
     for (CLI::App* sub : app.get_subcommands()) {
-      if (sub->get_name() == "run") continue;
+      if (sub->get_name() == "run" || sub->get_name() == "captive") continue;
       std::fprintf(stderr,
-                   "kelvin: error: kelvin %s was started by an MPI launcher on %d ranks; only 'kelvin run' runs on MPI "
-                   "ranks (cfd/README.md 'MPI ranks'); expected one process (start it without mpirun)\n",
+                   "kelvin: error: kelvin %s was started by an MPI launcher on %d ranks; only 'kelvin run' and the "
+                   "workers of 'kelvin captive --np' run on MPI ranks (cfd/README.md 'MPI ranks'); expected one "
+                   "process (start it without mpirun)\n",
                    sub->get_name().c_str(), ranks);
       return 2;
     }

@@ -75,32 +75,9 @@ void RunManeuvers(const std::string& case_file, const std::vector<std::string>& 
 
 // `--np N`: this command again under `mpiexec -n N` (replaces the process).
 [[noreturn]] void RelaunchOnRanks(int np, const std::vector<std::string>& run_args) {
-  std::filesystem::path launcher;
-  if (const char* path = std::getenv("PATH")) {
-    const std::string dirs = path;
-    for (std::size_t start = 0; start <= dirs.size();) {
-      const std::size_t end = std::min(dirs.find(':', start), dirs.size());
-      const std::filesystem::path candidate = std::filesystem::path(dirs.substr(start, end - start)) / "mpiexec";
-      if (end > start && access(candidate.c_str(), X_OK) == 0) {
-        launcher = candidate;
-        break;
-      }
-      start = end + 1;
-    }
-  }
-  if (launcher.empty()) {
-    throw ArgumentError(fmt::format("--np {}: no MPI launcher 'mpiexec' on PATH; expected Open MPI's (Debian package "
-                                    "openmpi-bin, which tools/setup installs), or start kelvin under your cluster's "
-                                    "launcher yourself",
-                                    np));
-  }
+  const std::filesystem::path launcher = FindLauncher(np);
   std::vector<std::string> argv = {launcher.string(), "-n", std::to_string(np), SelfExecutable().string(), "run"};
   argv.insert(argv.end(), run_args.begin(), run_args.end());
-  // Open MPI refuses root unless told; the user asked for the ranks.
-  if (geteuid() == 0) {
-    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
-    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
-  }
   std::vector<char*> c_argv;
   for (std::string& a : argv) c_argv.push_back(a.data());
   c_argv.push_back(nullptr);
