@@ -32,6 +32,12 @@ short probe) with an equal share each of the core time left; --until HH:MM
 and starts no target that its stored rate says cannot reach its count by then.
 --parallel N runs N targets at a time (one core each; libFuzzer's own -jobs
 would split one target's executions over processes that report separately).
+
+A target with tests/fuzz/libhdf5_defects/<target> (its library crashes on
+corrupt input within seconds) runs in libFuzzer's fork mode, one invocation
+that goes on past crashes; each crash input is replayed, and one whose first
+frame outside the sanitizer and libc is in libhdf5 is counted apart from
+kelvin's crashes.
 """
 
 import argparse
@@ -225,6 +231,35 @@ def store(path, lock, r):
 # ---------------------------------------------------------------------------
 # Running.
 
+def library_defects_target(target):
+    """A target whose library (Debian's libhdf5) crashes on corrupt input (tests/fuzz/README.md): it runs in
+    libFuzzer's fork mode, which goes on past a crash, and each crash is replayed to say where it happened."""
+    return os.path.isdir(os.path.join(SOURCE, "tests/fuzz/libhdf5_defects", target))
+
+
+def replay(binary, artifact, env):
+    """What an artifact's replay reports: (kind, site), kind 'leak', 'ub' or 'crash' (an out-of-memory
+    included); site 'libhdf5' when the first frame outside libFuzzer, the sanitizer, its allocator and
+    interceptors and libc is in libhdf5, else 'kelvin'."""
+    try:
+        out = subprocess.run([binary, "-rss_limit_mb=2048", artifact], env=env, capture_output=True, text=True, errors="replace",
+                             timeout=2 * TIMEOUT_SECONDS).stderr
+    except subprocess.TimeoutExpired:
+        return "crash", "kelvin"
+    kind = "leak" if "ERROR: LeakSanitizer" in out else "ub" if "runtime error:" in out else "crash"
+    for line in out.splitlines():
+        m = re.match(r"\s+#\d+ 0x[0-9a-f]+ (?:in (\S+) )?(.*)", line)
+        if not m:
+            continue
+        func, where = m.group(1) or "", m.group(2)
+        if (func.startswith(("__interceptor_", "__sanitizer", "__asan", "fuzzer::"))
+                or func in ("malloc", "calloc", "realloc", "free", "operator") or "libc.so" in where
+                or "sysdeps" in where):
+            continue
+        return kind, "libhdf5" if "libhdf5" in where else "kelvin"
+    return kind, "kelvin"
+
+
 def fuzz(build, target, runs, seconds, work):
     """Runs one target; returns its statistics and what went wrong."""
     fuzz_dir = os.path.join(build, "fuzz")
@@ -235,8 +270,11 @@ def fuzz(build, target, runs, seconds, work):
     before = set(os.listdir(artifacts))
     env = dict(os.environ, UBSAN_OPTIONS="print_stacktrace=1", ASAN_OPTIONS="allocator_may_return_null=1",
                LSAN_OPTIONS="suppressions=" + os.path.join(SOURCE, "tests/fuzz/lsan.supp"))
-    cmd = [os.path.join(build, "tests/fuzz", target + "_fuzzer"), f"-runs={runs}", f"-max_total_time={int(seconds)}",
+    binary = os.path.join(build, "tests/fuzz", target + "_fuzzer")
+    fork = library_defects_target(target)
+    cmd = [binary, f"-runs={runs}", f"-max_total_time={int(seconds)}",
            f"-timeout={TIMEOUT_SECONDS}", "-rss_limit_mb=2048", "-print_funcs=0", f"-artifact_prefix={artifacts}/", "-print_final_stats=1",
+           *(["-fork=1", "-ignore_crashes=1", "-ignore_ooms=1", "-ignore_timeouts=1"] if fork else []),
            corpus, os.path.join(fuzz_dir, "seeds", target)]
     start = time.monotonic()
     p = subprocess.run(cmd, env=env, capture_output=True, text=True, errors="replace")
@@ -249,15 +287,33 @@ def fuzz(build, target, runs, seconds, work):
         m = re.search(rf"stat::{key}:\s*(\d+)", log)
         return int(m.group(1)) if m else 0
 
-    return {
+    new = sorted(set(os.listdir(artifacts)) - before)  # this run's
+    r = {
         "target": target, "runs": stat("number_of_executed_units"), "required": required_runs(target),
         "exec_s": stat("average_exec_per_sec"), "seconds": wall, "rss_mb": stat("peak_rss_mb"), "corpus": len(os.listdir(corpus)),
         "leaks": len(re.findall(r"ERROR: LeakSanitizer", log)),
         "ub": len(re.findall(r"runtime error:", log)),
         "crashes": int(p.returncode != 0 and not re.search(r"ERROR: LeakSanitizer|runtime error:", log)),
-        "artifacts": sorted(set(os.listdir(artifacts)) - before),  # this run's
+        "artifacts": new,
         "timeout": bool(re.search(r"ERROR: libFuzzer: timeout", log)),
     }
+    if fork:
+        # Fork mode prints its progress as "#N: cov: ..." and each crash as one line: count the executions
+        # from the last progress line and sort the crashes by replaying their inputs.
+        progress = re.findall(r"^#(\d+): cov:", log, re.M)
+        r["runs"] = int(progress[-1]) if progress else 0
+        r["exec_s"] = int(r["runs"] / wall) if wall > 0 else 0
+        r.update(crashes=0, leaks=0, ub=0, library_defects=0, fork=True)
+        for a in new:
+            if a.startswith(("timeout-", "slow-unit-")):
+                r["timeout"] = r["timeout"] or a.startswith("timeout-")
+                continue
+            kind, site = replay(binary, os.path.join(artifacts, a), env)
+            key = "library_defects" if site == "libhdf5" else {"leak": "leaks", "ub": "ub", "crash": "crashes"}[kind]
+            r[key] += 1
+        # Its exit status is that of the last failed job; with no progress line the parent itself failed.
+        r["crashes"] += int(p.returncode != 0 and not progress)
+    return r
 
 
 def plan(build, targets, budget, work):
@@ -281,6 +337,7 @@ def fastest_first(build, targets, stored, work):
             rates[t] = max(fuzz(build, t, 10 ** 9, PROBE_SECONDS, work)["exec_s"], 1)
             print(f"probe {t}: {rates[t]} exec/s", flush=True)
     return sorted(targets, key=lambda t: required_runs(t) / rates[t]), rates
+
 
 
 def run_campaign(build, order, budget, parallel, work, results_path, until=None, rates=None):
@@ -329,6 +386,7 @@ def run_campaign(build, order, budget, parallel, work, results_path, until=None,
                 promised.pop(t)
                 results.append(r)
                 print(f"{t}: {r['runs']:,} executions, {r['exec_s']:,} exec/s, {r['crashes']} crashes"
+                      f"{' (+' + str(r['library_defects']) + ' inside libhdf5)' if r.get('library_defects') else ''}"
                       f"{' (a timeout: replay the artifact to tell a hang from a stall)' if r.get('timeout') else ''}, "
                       f"{r['leaks']} leaks, {r['ub']} UB", flush=True)
 
@@ -371,12 +429,20 @@ def section(stored, targets, build, current, notes):
         changed = current.get(r["target"], {}).get("reader_digest") != r.get("reader_digest")
         commit = (r.get("reader_commit") or r.get("commit", "?")) + ("*" if r.get("reader_dirty") else "")
         lines.append(f"| {r['target']} | {r['runs']:,} | {r['required']:,} | {'yes' if reached(r) else 'no'}"
-                     f" | {r['exec_s']:,} | {r['seconds']:.0f} | {r['corpus']} | {r['crashes']} | {r['leaks']} | {r['ub']}"
+                     f" | {r['exec_s']:,} | {r['seconds']:.0f} | {r['corpus']} | {r['crashes']}"
+                     f"{' (+' + str(r['library_defects']) + ' in libhdf5)' if r.get('library_defects') else ''}"
+                     f" | {r['leaks']} | {r['ub']}"
                      f" | {r.get('date', '?')} | {commit} | {'yes' if changed else 'no'} |")
     lines.append("")
     lines.append(f"{total:,} executions in these rows; {len(met)} of {len(targets)} targets reached their count; "
                  f"{sum(r['crashes'] for r in rows)} crashes, {sum(r['leaks'] for r in rows)} leaks, "
                  f"{sum(r['ub'] for r in rows)} UB reports.")
+    forked = [r for r in rows if r.get("fork")]
+    if forked:
+        lines.append("Run in libFuzzer's fork mode, which goes on past a crash (their library crashes on corrupt "
+                     "files within seconds; tests/fuzz/README.md): " + ", ".join(r["target"] for r in forked) +
+                     "; each crash input was replayed, and \"+N in libhdf5\" counts those whose crashing frame is "
+                     "inside Debian's libhdf5, not in kelvin.")
     if missing:
         lines.append(f"Not run yet: {', '.join(missing)}.")
     todo = [r for r in rows if not reached(r) and r["exec_s"]]
