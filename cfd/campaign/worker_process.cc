@@ -19,11 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// True for a variable that Open MPI puts in the environment of a process it
-// started or initialized as an MPI process (singleton or rank): inherited by
-// a launcher, they make it believe it runs inside that job (a singleton's
-// OMPI_MCA_ess=singleton fails mpiexec, its OMPI_MCA_pmix=isolated crashes
-// it). User settings such as OMPI_MCA_rmaps_base_oversubscribe stay.
+// True for an environment entry of an MPI launch (see LauncherEnvironment).
 bool FromAnMpiLaunch(std::string_view entry) {
   const std::string_view name = entry.substr(0, entry.find('='));
   for (const std::string_view prefix : {"PMIX_", "OMPI_COMM_WORLD_", "OMPI_MCA_orte_"}) {
@@ -38,6 +34,15 @@ bool FromAnMpiLaunch(std::string_view entry) {
 }
 
 }  // namespace
+
+std::vector<char*> LauncherEnvironment() {
+  std::vector<char*> env;
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (!FromAnMpiLaunch(*e)) env.push_back(*e);
+  }
+  env.push_back(nullptr);
+  return env;
+}
 
 pid_t SpawnWorker(const WorkerProgram& program, const std::vector<std::string>& args,
                   const fs::path& log, const std::string& run) {
@@ -55,13 +60,9 @@ pid_t SpawnWorker(const WorkerProgram& program, const std::vector<std::string>& 
   std::vector<char*> argv;
   for (std::string& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
-  std::vector<char*> env;
-  for (char** e = environ; *e != nullptr; ++e) {
-    if (!on_ranks || !FromAnMpiLaunch(*e)) env.push_back(*e);
-  }
-  env.push_back(nullptr);
+  std::vector<char*> env = LauncherEnvironment();
   pid_t pid = -1;
-  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), env.data());
+  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), on_ranks ? env.data() : environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw InputError(fmt::format("cannot start {} for run '{}' (error {})", exe.string(), run, rc));
   return pid;

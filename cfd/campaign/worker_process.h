@@ -21,10 +21,17 @@ struct WorkerProgram {
   int ranks = 1;
 };
 
+// This process's environment (a null-terminated list for exec) without the
+// variables Open MPI sets in an MPI process, singleton or rank (PMIX_*,
+// OMPI_MCA_ess, OMPI_MCA_pmix, ...): for starting a launcher, which they make
+// believe it runs inside that job (a singleton's OMPI_MCA_ess=singleton fails
+// mpiexec, its OMPI_MCA_pmix=isolated crashes it). User settings such as
+// OMPI_MCA_rmaps_base_oversubscribe stay.
+std::vector<char*> LauncherEnvironment();
+
 // Starts `program args...` with stdout and stderr into `log` (created or
-// truncated), under a launcher without the variables of an MPI launch this
-// process may carry (it may itself be an MPI singleton); returns its pid (the launcher's on ranks).
-// Throws InputError naming `run` if it cannot start.
+// truncated), a launcher with LauncherEnvironment(); returns its pid (the
+// launcher's on ranks). Throws InputError naming `run` if it cannot start.
 pid_t SpawnWorker(const WorkerProgram& program, const std::vector<std::string>& args,
                   const std::filesystem::path& log, const std::string& run);
 

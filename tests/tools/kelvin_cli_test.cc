@@ -87,8 +87,11 @@ TEST(KelvinCliTest, RunOnTwoRanksMatchesTheSerialRun) {
   const std::string cavity = (kelvin::testing::SourceDir() / "data/cases/cavity_re100.yaml").string();
   const auto serial = RunCommand(Kelvin() + " run --no-progress " + cavity + " -o " + (tmp / "serial").string());
   ASSERT_EQ(serial.exit_code, 0) << serial.output;
-  const auto ranks =
-      RunCommand(Kelvin() + " run --np 2 --no-progress " + cavity + " -o " + (tmp / "ranks").string());
+  // Started as if from an MPI singleton (a test or a script with MPI initialized): the variables it
+  // carries made mpiexec fail (OMPI_MCA_ess) or crash (OMPI_MCA_pmix) before the launcher's environment
+  // was cleaned of them.
+  const auto ranks = RunCommand("env OMPI_MCA_ess=singleton OMPI_MCA_pmix=isolated PMIX_RANK=0 " + Kelvin() +
+                                " run --np 2 --no-progress " + cavity + " -o " + (tmp / "ranks").string());
   ASSERT_EQ(ranks.exit_code, 0) << ranks.output;
   EXPECT_THAT(ranks.output, HasSubstr("decomposed over 2 MPI ranks: 4096 cells"));
   const std::string completed = "completed 100 steps";

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cfd/campaign/maneuver_campaign.h"
+#include "cfd/campaign/worker_process.h"
 #include "cfd/parallel/petsc_context.h"
 #include "cfd/run/run_case.h"
 #include "data/schema/errors.h"
@@ -82,7 +83,8 @@ void RunManeuvers(const std::string& case_file, const std::vector<std::string>& 
   for (std::string& a : argv) c_argv.push_back(a.data());
   c_argv.push_back(nullptr);
   std::fflush(nullptr);
-  execv(launcher.c_str(), c_argv.data());
+  std::vector<char*> env = cfd::LauncherEnvironment();
+  execve(launcher.c_str(), c_argv.data(), env.data());
   throw ArgumentError(fmt::format("--np {}: could not start {}: {}", np, launcher.string(), std::strerror(errno)));
 }
 
