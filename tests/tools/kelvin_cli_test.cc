@@ -1,7 +1,9 @@
 // The kelvin program's command-line contract: --version, help, and exit code
 // 2 with one clear line on bad arguments.
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -107,6 +109,27 @@ TEST(KelvinCliTest, RunOnTwoRanksMatchesTheSerialRun) {
               std::abs(b - a) / std::abs(a));
   EXPECT_NEAR(b, a, 5e-4 * std::abs(a));
   EXPECT_TRUE(std::filesystem::exists(tmp / "ranks/checkpoint.h5"));
+}
+
+// More ranks than cores (4 on this 2-core machine): the launcher is told to
+// oversubscribe, and the run says so instead of failing with Open MPI's
+// "not enough slots".
+TEST(KelvinCliTest, MoreRanksThanCoresRunWithAWarning) {
+  kelvin::testing::ScopedTempDir tmp;
+  const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+  const int np = static_cast<int>(cores) + 1;
+  // The cavity's 4,096 cells over np ranks: below the default floor of cells per rank.
+  const std::filesystem::path cavity = tmp / "cavity.yaml";
+  std::ofstream(cavity) << kelvin::testing::ReadText(kelvin::testing::SourceDir() / "data/cases/cavity_re100.yaml")
+                        << "\npartition: {min_cells_per_rank: 1}\n";
+  const auto r = RunCommand("env -u OMPI_MCA_rmaps_base_oversubscribe " + Kelvin() + " run --np " +
+                            std::to_string(np) + " --no-progress " + cavity.string() + " -o " +
+                            (tmp / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(fmt::format("--np {} on a machine with {} cores: the ranks share the cores "
+                                              "(oversubscribed)",
+                                              np, cores)));
+  EXPECT_THAT(r.output, HasSubstr(fmt::format("decomposed over {} MPI ranks", np)));
 }
 
 // `--np` without a launcher on PATH: one clear error naming what is missing.

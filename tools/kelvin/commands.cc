@@ -1,6 +1,7 @@
 #include "tools/kelvin/commands.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -61,6 +62,14 @@ std::filesystem::path FindLauncher(int np) {
   if (geteuid() == 0) {
     setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
     setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
+  }
+  // It also refuses more ranks than cores (its "slots"): run them, and say
+  // that they share the cores.
+  if (const long cores = sysconf(_SC_NPROCESSORS_ONLN); cores > 0 && np > cores) {
+    setenv("OMPI_MCA_rmaps_base_oversubscribe", "1", 0);
+    spdlog::warn("--np {} on a machine with {} cores: the ranks share the cores (oversubscribed), so a step "
+                 "takes longer than on {} ranks",
+                 np, cores, cores);
   }
   return launcher;
 }

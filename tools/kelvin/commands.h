@@ -35,7 +35,8 @@ std::vector<Command> AddCommands(CLI::App& app);
 std::filesystem::path SelfExecutable();
 
 // The MPI launcher for `--np np` (mpiexec on PATH; allowed to run as root when
-// kelvin does). Throws ArgumentError naming --np when there is none.
+// kelvin does, and to start more ranks than the machine has cores, with a
+// warning). Throws ArgumentError naming --np when there is none.
 std::filesystem::path FindLauncher(int np);
 
 // Ranks an MPI launcher started this process among (Open MPI's and the PMI
