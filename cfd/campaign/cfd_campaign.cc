@@ -317,8 +317,7 @@ class JobFiles final : public Monitor {
            const DomainPart* part)
       : ctx_(ctx), job_(job), sampler_(sampler), cost_(cost), part_(part) {}
   void AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) override {
-    cost_.cpu_seconds +=
-        part_ && part_->parallel() ? part_->Sum(record.step_cpu_seconds) : record.step_cpu_seconds;
+    cost_.cpu_seconds += part_ ? part_->Sum(record.step_cpu_seconds) : record.step_cpu_seconds;
     cost_.courant_max = std::max(cost_.courant_max, record.step.courant_max);
     ++ctx_.computed;
     job_.step = solver.step();

@@ -237,6 +237,11 @@ def library_defects_target(target):
     return os.path.isdir(os.path.join(SOURCE, "tests/fuzz/libhdf5_defects", target))
 
 
+def in_libhdf5(r):
+    """' (+N in libhdf5)' for a run with crashes inside libhdf5, else ''."""
+    return f" (+{r['library_defects']} in libhdf5)" if r.get("library_defects") else ""
+
+
 def replay(binary, artifact, env):
     """What an artifact's replay reports: (kind, site), kind 'leak', 'ub' or 'crash' (an out-of-memory
     included); site 'libhdf5' when the first frame outside libFuzzer, the sanitizer, its allocator and
@@ -386,7 +391,7 @@ def run_campaign(build, order, budget, parallel, work, results_path, until=None,
                 promised.pop(t)
                 results.append(r)
                 print(f"{t}: {r['runs']:,} executions, {r['exec_s']:,} exec/s, {r['crashes']} crashes"
-                      f"{' (+' + str(r['library_defects']) + ' inside libhdf5)' if r.get('library_defects') else ''}"
+                      f"{in_libhdf5(r)}"
                       f"{' (a timeout: replay the artifact to tell a hang from a stall)' if r.get('timeout') else ''}, "
                       f"{r['leaks']} leaks, {r['ub']} UB", flush=True)
 
@@ -430,7 +435,7 @@ def section(stored, targets, build, current, notes):
         commit = (r.get("reader_commit") or r.get("commit", "?")) + ("*" if r.get("reader_dirty") else "")
         lines.append(f"| {r['target']} | {r['runs']:,} | {r['required']:,} | {'yes' if reached(r) else 'no'}"
                      f" | {r['exec_s']:,} | {r['seconds']:.0f} | {r['corpus']} | {r['crashes']}"
-                     f"{' (+' + str(r['library_defects']) + ' in libhdf5)' if r.get('library_defects') else ''}"
+                     f"{in_libhdf5(r)}"
                      f" | {r['leaks']} | {r['ub']}"
                      f" | {r.get('date', '?')} | {commit} | {'yes' if changed else 'no'} |")
     lines.append("")
