@@ -246,9 +246,12 @@ def replay(binary, artifact, env):
     """What an artifact's replay reports: (kind, site), kind 'leak', 'ub' or 'crash' (an out-of-memory
     included); site 'libhdf5' when the first frame outside libFuzzer, the sanitizer, its allocator and
     interceptors and libc is in libhdf5, else 'kelvin'."""
+    # The malloc limit of the campaign, but a higher RSS limit: an input whose RSS creeps up to the limit before
+    # its one huge malloc is then reported at that malloc, with its stack, not by the RSS thread without one. The
+    # time-out makes libFuzzer print the stack of a hang.
     try:
-        out = subprocess.run([binary, "-rss_limit_mb=2048", artifact], env=env, capture_output=True, text=True, errors="replace",
-                             timeout=2 * TIMEOUT_SECONDS).stderr
+        out = subprocess.run([binary, "-malloc_limit_mb=2048", "-rss_limit_mb=8192", f"-timeout={TIMEOUT_SECONDS}", artifact],
+                             env=env, capture_output=True, text=True, errors="replace", timeout=2 * TIMEOUT_SECONDS).stderr
     except subprocess.TimeoutExpired:
         return "crash", "kelvin"
     kind = "leak" if "ERROR: LeakSanitizer" in out else "ub" if "runtime error:" in out else "crash"
@@ -258,7 +261,7 @@ def replay(binary, artifact, env):
             continue
         func, where = m.group(1) or "", m.group(2)
         if (func.startswith(("__interceptor_", "__sanitizer", "__asan", "fuzzer::"))
-                or func in ("malloc", "calloc", "realloc", "free", "operator") or "libc.so" in where
+                or func in ("malloc", "calloc", "realloc", "free", "operator", "main") or "libc.so" in where
                 or "sysdeps" in where):
             continue
         return kind, "libhdf5" if "libhdf5" in where else "kelvin"

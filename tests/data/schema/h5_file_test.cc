@@ -159,12 +159,6 @@ TEST(H5FileTest, H5dumpReadsWrittenFile) {
   EXPECT_THAT(res.output, HasSubstr("1.25, 2.5"));
 }
 
-}  // namespace
-}  // namespace kelvin::data
-
-namespace kelvin::data {
-namespace {
-
 // A captive campaign file whose chunk of 'runs/drift/time' has a corrupt
 // filter mask (the deflate filter marked skipped) and 188 stored bytes: the
 // reader refuses it with one error instead of letting libhdf5 copy the whole
@@ -182,6 +176,37 @@ TEST(H5Reader, CorruptUnfilteredChunkIsAnError) {
         << e.what();
   }
   EXPECT_EQ(r.Read("runs/drift/X").values.size(), 40u);  // its intact neighbour
+}
+
+// A campaign file whose dataspace for one channel declares 53 TB of values
+// where the dataset stores 71 compressed bytes (deflate expands at most
+// 1032-fold): the reader refuses it by name before allocating (it asked for
+// the terabytes, and ASan's allocator gave up; found by the captive_h5 fuzzer).
+TEST(H5Reader, DataspaceLargerThanItsStorageIsAnError) {
+  const auto file = kelvin::testing::SourceDir() / "tests/fuzz/regressions/captive_h5/read_huge_dataspace_22250dbc";
+  const H5Reader r(file);
+  try {
+    r.Read("runs/drift/Y");
+    FAIL() << "a corrupt dataspace was read";
+  } catch (const DataFileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("'runs/drift/Y': corrupt dataspace: 5.28e+13 bytes of values declared where the "
+                                    "dataset stores 71 bytes, compressed"));
+  }
+}
+
+// A group whose link information is corrupt: its link count was garbage
+// (billions) and the reader tried every index, one failed lookup at a time
+// (a time-out found by the captive_h5 fuzzer); the failed query is an error
+// now.
+TEST(H5Reader, CorruptLinkCountIsAnError) {
+  const auto file = kelvin::testing::SourceDir() / "tests/fuzz/regressions/captive_h5/list_corrupt_link_count_0bb195ce";
+  const H5Reader r(file);
+  try {
+    r.List("/runs");
+    FAIL() << "a corrupt group was listed";
+  } catch (const DataFileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("'/runs': corrupt group: its link count cannot be read"));
+  }
 }
 
 }  // namespace
