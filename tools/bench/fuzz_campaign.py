@@ -28,8 +28,10 @@ not reach its count never replaces one that did on the same reader sources.
 
 --budget (seconds of wall time) runs the targets fastest first (rates from a
 short probe) with an equal share each of the core time left; --until HH:MM
-(UTC) stops every run at that time (a stopped run is stored as not reached)
-and starts no target that its stored rate says cannot reach its count by then.
+(UTC, the next such time, past midnight too) stops every run at that time (a
+stopped run is stored as not reached) and starts no target that its stored
+rate (or, with --probe, the rate of a short probe now) says cannot reach its
+count by then.
 --parallel N runs N targets at a time (one core each; libFuzzer's own -jobs
 would split one target's executions over processes that report separately).
 
@@ -475,7 +477,10 @@ def main():
                     help="run only targets without a stored run that reached its count on the current reader sources")
     ap.add_argument("--fastest-first", action="store_true",
                     help="order by time to reach the count (stored rates, else a short probe)")
-    ap.add_argument("--until", help="HH:MM UTC today: no run goes past it (stopped runs do not reach their count)")
+    ap.add_argument("--until", help="HH:MM UTC, the next one: no run goes past it (stopped runs do not reach their count)")
+    ap.add_argument("--probe", action="store_true",
+                    help="rate the targets by a short probe now, not by their stored runs (a stored rate measured "
+                         "beside other targets understates one running alone)")
     ap.add_argument("--note", action="append", default=[], metavar="TARGET=TEXT",
                     help="store a note said under the table for TARGET (empty TEXT removes it)")
     ap.add_argument("--render-only", action="store_true", help="run nothing; write the section from the stored results")
@@ -492,7 +497,10 @@ def main():
         if not re.fullmatch(r"\d\d?:\d\d", args.until):
             ap.error(f"--until {args.until}: expected HH:MM")
         h, m = map(int, args.until.split(":"))
-        until = datetime.datetime.now(datetime.timezone.utc).replace(hour=h, minute=m, second=0, microsecond=0)
+        now = datetime.datetime.now(datetime.timezone.utc)
+        until = now.replace(hour=h, minute=m, second=0, microsecond=0)
+        if until <= now:  # the next HH:MM: a campaign started before midnight runs into the next day
+            until += datetime.timedelta(days=1)
     if args.note:
         notes = load_file(results_path)["notes"]
         for n in args.note:
@@ -518,8 +526,8 @@ def main():
         budget, rates = args.budget, None
         if order and budget:
             order, budget = plan(args.build, order, budget, work)
-        elif order and args.fastest_first:
-            order, rates = fastest_first(args.build, order, stored, work)
+        elif order and (args.fastest_first or args.probe):
+            order, rates = fastest_first(args.build, order, {} if args.probe else stored, work)
         elif until:  # the stored rates tell which targets can still reach their count; the others start anyway
             rates = {t: stored[t]["exec_s"] for t in order if t in stored and stored[t].get("exec_s")}
         print("order: " + " ".join(order), flush=True)
