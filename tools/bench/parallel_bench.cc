@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <mpi.h>
+#include <malloc.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -91,6 +92,13 @@ double ResidentMb() {
   return kb / 1024.0;
 }
 
+// Heap in use now (MB): malloc's live bytes, what the process holds apart
+// from freed pages glibc keeps (which the resident size includes).
+double LiveHeapMb() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / 1048576.0;
+}
+
 int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu) {
   EnsureMpi();
   int rank = 0, size = 1;
@@ -108,6 +116,7 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu)
   }
   const double decompose_s = MPI_Wtime() - t0;
   const Mesh& mesh = size > 1 ? *local.mesh : *whole;
+  const double live_mesh = LiveHeapMb();
   PhysicsOptions physics;
   physics.nu = nu;
   SchemeOptions schemes;
@@ -121,6 +130,7 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu)
   pimple.pressure_final_relative_tolerance = 1e-6;
   PimpleSolver solver(mesh, physics, schemes, pimple, Field<Vector3>("U", mesh, true), Field<double>("p", mesh, false),
                       local.part);
+  const double live_solver = LiveHeapMb();
   std::vector<double> step_s;
   double p_iters = 0.0, u_iters = 0.0;
   for (int s = 0; s < steps; ++s) {
@@ -148,13 +158,17 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu)
   }
   const std::vector<double> rss = Gathered(usage.ru_maxrss / 1024.0, MPI_COMM_WORLD);
   const std::vector<double> resident = Gathered(ResidentMb(), MPI_COMM_WORLD);
+  const std::vector<double> live_mesh_mb = Gathered(live_mesh, MPI_COMM_WORLD);
+  const std::vector<double> live_solver_mb = Gathered(live_solver, MPI_COMM_WORLD);
+  const std::vector<double> live_end_mb = Gathered(LiveHeapMb(), MPI_COMM_WORLD);
   const std::vector<double> own = Gathered(owned, MPI_COMM_WORLD);
   const std::vector<double> ghost = Gathered(ghosts, MPI_COMM_WORLD);
   const std::vector<double> nbr = Gathered(static_cast<double>(neighbours.size()), MPI_COMM_WORLD);
   if (rank == 0) {
     std::printf("{\"ranks\": %d, \"cells\": %lld, \"decompose_s\": %.4f, \"step_s\": %s, \"pressure_iterations\": %.0f, \"momentum_iterations\": %.0f, "
-                "\"rss_mb\": %s, \"resident_mb\": %s, \"owned\": %s, \"ghosts\": %s, \"neighbours\": %s}\n",
-                size, n_cells, decompose_s, List(step_s).c_str(), p_iters, u_iters, List(rss).c_str(), List(resident).c_str(), List(own).c_str(),
+                "\"rss_mb\": %s, \"resident_mb\": %s, \"live_mesh_mb\": %s, \"live_solver_mb\": %s, \"live_end_mb\": %s, \"owned\": %s, \"ghosts\": %s, \"neighbours\": %s}\n",
+                size, n_cells, decompose_s, List(step_s).c_str(), p_iters, u_iters, List(rss).c_str(), List(resident).c_str(), List(live_mesh_mb).c_str(),
+                List(live_solver_mb).c_str(), List(live_end_mb).c_str(), List(own).c_str(),
                 List(ghost).c_str(), List(nbr).c_str());
   }
   return 0;
