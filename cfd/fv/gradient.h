@@ -35,6 +35,7 @@ class Gradient {
   void Compute(std::span<const double> cells, std::span<const double> boundary, std::vector<Vector3>& out) const;
   void Compute(std::span<const Vector3> cells, std::span<const Vector3> boundary, std::vector<Matrix3>& out) const;
   const GradientOptions& options() const { return options_; }
+  const Mesh& mesh() const { return mesh_; }
   // Recomputes the cached least-squares vectors from the mesh geometry (after
   // the mesh moved; a no-op for Gauss linear).
   void UpdateGeometry();

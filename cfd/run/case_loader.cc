@@ -110,7 +110,7 @@ SchemeOptions LoadSchemes(const ConfigNode& root) {
   if (root.Has("schemes")) {
     const ConfigNode s = root["schemes"];
     s.ExpectKeys({"time", "gradient", "limiter", "convection", "non_orthogonal_correction", "face_centre_correction",
-                  "skew_correction"});
+                  "skew_correction", "curvature_correction"});
     schemes.time = GetEnum(s, "time", schemes.time, {{"euler", TimeScheme::kEuler}, {"backward", TimeScheme::kBackward}});
     schemes.gradient.scheme = GetEnum(s, "gradient", schemes.gradient.scheme,
                                       {{"gauss", GradientScheme::kGaussLinear},
@@ -125,6 +125,7 @@ SchemeOptions LoadSchemes(const ConfigNode& root) {
     schemes.non_orthogonal_correction = s.Get<bool>("non_orthogonal_correction", schemes.non_orthogonal_correction);
     schemes.skew_correction = s.Get<bool>("skew_correction", schemes.skew_correction);
     schemes.face_centre_correction = s.Get<bool>("face_centre_correction", schemes.face_centre_correction);
+    schemes.curvature_correction = s.Get<bool>("curvature_correction", schemes.curvature_correction);
   }
 
   return schemes;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cfd/fv/diffusion_curvature.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -77,6 +78,18 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
   // The corrections vanish identically on orthogonal meshes: skip their work.
   non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;
   if (schemes_.skew_correction) skew_ = mesh.SkewVectors();
+  if (schemes_.curvature_correction) {
+    if (!schemes_.skew_correction) {
+      throw ConfigError("schemes.curvature_correction: expected skew_correction true as well (the Rhie-Chow flux "
+                        "through kinked faces takes the skew-corrected gradient)");
+    }
+    if (schemes_.face_centre_correction) {
+      throw ConfigError("schemes.curvature_correction: expected face_centre_correction false (the curvature "
+                        "correction completes the interpolated non-orthogonal form)");
+    }
+    curvature_ = DiffusionCurvatureTensors(mesh, non_orth_);
+    moments_ = FaceFirstMoments(mesh);
+  }
   momentum_solver_ = LinearSolver::Create(pimple_.momentum_solver, part_.get());
   pressure_solver_ = LinearSolver::Create(pimple_.pressure_solver, part_.get());
 }
@@ -101,6 +114,11 @@ void PimpleSolver::SetTurbulence(std::unique_ptr<TurbulenceModel> model) {
                                   "the DomainPart the solver runs on",
                                   model->name()));
   }
+  if (model && schemes_.curvature_correction) {
+    throw ConfigError(fmt::format("schemes.curvature_correction: the {} model's stress has no curvature correction; "
+                                  "expected a laminar run",
+                                  model->name()));
+  }
   turbulence_ = std::move(model);
   if (initialized_ && turbulence_) turbulence_->Initialize(*U_, RelativeFlux());
 }
@@ -111,6 +129,10 @@ void PimpleSolver::RefreshGeometry() {
   non_orth_ = NonOrthGeometry(mesh_, NonOrthForm(schemes_));
   non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;
   if (schemes_.skew_correction) skew_ = mesh_.SkewVectors();
+  if (schemes_.curvature_correction) {
+    curvature_ = DiffusionCurvatureTensors(mesh_, non_orth_);
+    moments_ = FaceFirstMoments(mesh_);
+  }
 }
 
 void PimpleSolver::MoveMesh(bool carry_old_fluxes) {
@@ -176,6 +198,11 @@ void PimpleSolver::AssembleMomentum(double dt, std::span<const double> flux_rel)
     turbulence_->AddDivDevReff(UEqn_, *U_, grad_U_, non_orth_, non_orth_correction_);
   } else {
     AddLaminarDivDevReff(UEqn_, *U_, physics_.nu, grad_U_, non_orth_, non_orth_correction_);
+    if (schemes_.curvature_correction) {
+      std::array<std::vector<Matrix3>, 3> hessians = ComponentHessians(grad_, grad_U_);
+      for (auto& h : hessians) Sync(h);
+      AddDiffusionCurvature(UEqn_, physics_.nu, curvature_, hessians);
+    }
   }
   if (physics_.source) {
     source_.resize(mesh_.n_cells());
@@ -295,30 +322,39 @@ void PimpleSolver::FluxHbyA(double dt, bool backward, double alpha_U, const std:
     Sync(grad_HbyA_);
   }
   const std::vector<Vector3>& skew_vec = skew_;
-  // Face interpolation, skew-corrected with the gradient g when asked.
-  auto interp = [&](const std::vector<Vector3>& v, const std::vector<Matrix3>& g, int f, int P, int N) {
-    Vector3 out = w[f] * v[P] + (1.0 - w[f]) * v[N];
-    if (skew) out += (w[f] * g[P] + (1.0 - w[f]) * g[N]) * skew_vec[f];
+  // Flux of v through the face, the interpolation skew-corrected with the
+  // gradient g when asked; with the curvature correction a kinked face adds
+  // g_f : M_f^T (cfd/fv/diffusion_curvature.h).
+  auto face_flux = [&](const std::vector<Vector3>& v, const std::vector<Matrix3>& g, int f, int P, int N) {
+    double out = (w[f] * v[P] + (1.0 - w[f]) * v[N]).dot(sf[f]);
+    if (!skew) return out;
+    const Matrix3 gf = w[f] * g[P] + (1.0 - w[f]) * g[N];
+    out += (gf * skew_vec[f]).dot(sf[f]);
+    if (!moments_.empty()) out += gf.cwiseProduct(moments_[f].transpose()).sum();
     return out;
   };
   for (int f = 0; f < ni; ++f) {
     const int P = owner[f], N = neighbour[f];
     rAUf[f] = w[f] * rAU[P] + (1.0 - w[f]) * rAU[N];
-    phi_HbyA[f] = interp(HbyA, grad_HbyA_, f, P, N).dot(sf[f]);
+    phi_HbyA[f] = face_flux(HbyA, grad_HbyA_, f, P, N);
     double ddt_corr;
     if (backward) {
       Vector3 u_old = w[f] * (2.0 * U_->old(0)[P] - 0.5 * U_->old(1)[P]) +
                       (1.0 - w[f]) * (2.0 * U_->old(0)[N] - 0.5 * U_->old(1)[N]);
-      if (skew) u_old += 1.5 * (w[f] * grad_U_old_[P] + (1.0 - w[f]) * grad_U_old_[N]) * skew_vec[f];
-      ddt_corr = (2.0 * phi_old_[0][f] - 0.5 * phi_old_[1][f] - u_old.dot(sf[f])) / dt;
+      double u_old_flux = u_old.dot(sf[f]);
+      if (skew) {
+        // 1.5 grad(u^n): the gradient of the BDF2 combination, as the skew term has it.
+        const Matrix3 g = 1.5 * (w[f] * grad_U_old_[P] + (1.0 - w[f]) * grad_U_old_[N]);
+        u_old_flux += (g * skew_vec[f]).dot(sf[f]);
+        if (!moments_.empty()) u_old_flux += g.cwiseProduct(moments_[f].transpose()).sum();
+      }
+      ddt_corr = (2.0 * phi_old_[0][f] - 0.5 * phi_old_[1][f] - u_old_flux) / dt;
     } else {
-      const Vector3 u_old = interp(U_->old(0), grad_U_old_, f, P, N);
-      ddt_corr = (phi_old_[0][f] - u_old.dot(sf[f])) / dt;
+      ddt_corr = (phi_old_[0][f] - face_flux(U_->old(0), grad_U_old_, f, P, N)) / dt;
     }
     phi_HbyA[f] += rAUf[f] * ddt_corr;
     if (alpha_U < 1.0) {
-      const Vector3 u_prev = interp(U_prev, grad_U_, f, P, N);
-      phi_HbyA[f] += (1.0 - alpha_U) * (phi_prev[f] - u_prev.dot(sf[f]));
+      phi_HbyA[f] += (1.0 - alpha_U) * (phi_prev[f] - face_flux(U_prev, grad_U_, f, P, N));
     }
   }
 }

@@ -241,6 +241,8 @@ class PimpleSolver {
   std::vector<Matrix3> grad_U_old_;   // gradient of U at the start of the step (skew correction)
   std::vector<Matrix3> grad_HbyA_;
   std::vector<Vector3> skew_;  // internal faces, only with skew correction
+  std::vector<Matrix3> curvature_;  // internal faces, only with the curvature correction
+  std::vector<Matrix3> moments_;    // internal faces' first moments M_f, the same
   std::vector<Vector3> grad_p_;
   std::vector<Vector3> source_;
   std::vector<Vector3> cell_source_;

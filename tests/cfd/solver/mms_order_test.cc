@@ -8,7 +8,17 @@
 // The observed order of the velocity error between the two finest grids must
 // be at least 1.8 on (a) uniform, (b) randomly perturbed and (c) polyhedral
 // meshes (median-dual cells, and the 2:1 split-face cells of refinement
-// interfaces).
+// interfaces); that of the pressure error at least 1.5 on the uniform and the
+// median-dual meshes (issue 22; on the randomly perturbed and split-face
+// meshes it is about 1.0 and 1.3, open).
+//
+// MmsTruncation measures the truncation error of the Laplacian itself, the
+// discrete operator applied to the exact field against its analytic value:
+// second order on uniform and smoothly skewed hexahedra, O(1) on the kinked
+// faces of the median-dual cells unless the curvature correction
+// (cfd/fv/diffusion_curvature.h) adds the face's second-order terms. The
+// pressure takes up the gradient part of such an O(1) error (it fell no
+// faster than O(1) on the median-dual meshes before the correction).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -16,6 +26,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "cfd/fv/diffusion_curvature.h"
 #include "cfd/mesh/box_mesh.h"
 #include "cfd/mesh/dual_mesh.h"
 #include "tests/cfd/cfd_test_support.h"
@@ -66,7 +77,8 @@ Mesh MakeMesh(int n, double perturbation, bool polyhedral, bool dual) {
   return MakeBoxMesh(mo);
 }
 
-MmsResult SolveMms(int n, double perturbation, bool polyhedral, GradientScheme gradient, bool dual, bool face_centre) {
+MmsResult SolveMms(int n, double perturbation, bool polyhedral, GradientScheme gradient, bool dual, bool face_centre,
+                   bool curvature) {
   const Mesh mesh = MakeMesh(n, perturbation, polyhedral, dual);
   auto U = testing::MakeField<Vector3>("U", mesh, [](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
     if (p.kind == PatchKind::kEmpty) return std::make_unique<Empty<Vector3>>();
@@ -83,6 +95,7 @@ MmsResult SolveMms(int n, double perturbation, bool polyhedral, GradientScheme g
   schemes.gradient.scheme = gradient;
   schemes.skew_correction = perturbation > 0 || polyhedral || dual;
   schemes.face_centre_correction = face_centre;
+  schemes.curvature_correction = curvature;
   PimpleOptions pimple;
   pimple.n_outer = 1;
   pimple.n_correctors = 2;
@@ -133,34 +146,52 @@ MmsResult SolveMms(int n, double perturbation, bool polyhedral, GradientScheme g
   return r;
 }
 
-double ObservedOrder(const MmsResult& coarse, const MmsResult& fine) {
-  return std::log(coarse.error_u / fine.error_u) / std::log(coarse.h / fine.h);
+double ObservedOrder(double coarse_error, double fine_error, double coarse_h, double fine_h) {
+  return std::log(coarse_error / fine_error) / std::log(coarse_h / fine_h);
 }
 
-void CheckOrder(const char* label, double perturbation, bool polyhedral, GradientScheme gradient,
-                std::array<int, 3> sizes, bool dual = false, bool face_centre = false) {
+struct MeshChoice {
+  double perturbation = 0.0;
+  bool polyhedral = false;  // 2:1 split faces
+  bool dual = false;        // median-dual polygonal prisms
+  bool face_centre = false;
+  bool curvature = false;
+  double min_pressure_order = 0.0;  // 0: reported, not asserted
+};
+
+void CheckOrder(const char* label, GradientScheme gradient, std::array<int, 3> sizes, const MeshChoice& m) {
   std::printf("%s\n", label);
   std::array<MmsResult, 3> r;
-  for (int i = 0; i < 3; ++i) r[i] = SolveMms(sizes[i], perturbation, polyhedral, gradient, dual, face_centre);
-  for (std::size_t i = 1; i < r.size(); ++i) {
-    std::printf("  observed order %.3f (velocity), %.3f (pressure)\n", ObservedOrder(r[i - 1], r[i]),
-                std::log(r[i - 1].error_p / r[i].error_p) / std::log(r[i - 1].h / r[i].h));
+  for (int i = 0; i < 3; ++i) {
+    r[i] = SolveMms(sizes[i], m.perturbation, m.polyhedral, gradient, m.dual, m.face_centre, m.curvature);
   }
-  EXPECT_GE(ObservedOrder(r[1], r[2]), 1.8) << label;
+  auto order_u = [&](int i) { return ObservedOrder(r[i - 1].error_u, r[i].error_u, r[i - 1].h, r[i].h); };
+  auto order_p = [&](int i) { return ObservedOrder(r[i - 1].error_p, r[i].error_p, r[i - 1].h, r[i].h); };
+  for (int i = 1; i < 3; ++i) std::printf("  observed order %.3f (velocity), %.3f (pressure)\n", order_u(i), order_p(i));
+  EXPECT_GE(order_u(2), 1.8) << label;
+  if (m.min_pressure_order > 0.0) {
+    EXPECT_GE(order_p(2), m.min_pressure_order) << label;
+  }
 }
 
 TEST(MmsOrder, UniformHex) {
-  CheckOrder("uniform hex, Gauss gradients", 0.0, false, GradientScheme::kGaussLinear, {16, 32, 64});
+  CheckOrder("uniform hex, Gauss gradients", GradientScheme::kGaussLinear, {16, 32, 64},
+             {.min_pressure_order = 1.5});
 }
 
 TEST(MmsOrder, PerturbedHex) {
-  CheckOrder("randomly perturbed hex (20% of h), least-squares gradients", 0.2, false, GradientScheme::kLeastSquares,
-             {16, 32, 64});
+  CheckOrder("randomly perturbed hex (20% of h), least-squares gradients", GradientScheme::kLeastSquares,
+             {16, 32, 64}, {.perturbation = 0.2});
 }
 
+// Without the curvature correction the pressure orders here were 0.73 and
+// 0.48 (error 1.31e-2, 8.07e-3, 5.83e-3), the velocity's 1.88 and 1.95.
 TEST(MmsOrder, PolyhedralMedianDual) {
-  CheckOrder("polyhedral (median-dual polygonal prisms, vertices perturbed 15%), least-squares gradients", 0.15,
-             false, GradientScheme::kLeastSquares, {16, 32, 64}, true);
+  CheckOrder(
+      "polyhedral (median-dual polygonal prisms, vertices perturbed 15%), least-squares gradients, curvature "
+      "correction",
+      GradientScheme::kLeastSquares, {16, 32, 64},
+      {.perturbation = 0.15, .dual = true, .curvature = true, .min_pressure_order = 1.5});
 }
 
 // The 2:1 split-face mesh (every other block refined, as snappyHexMesh
@@ -171,10 +202,128 @@ TEST(MmsOrder, PolyhedralMedianDual) {
 // solid-body error in the interior, with a coarse/fine pressure oscillation
 // that fell only as h. The face-centre form of the correction alone gave
 // orders 1.84, 0.59; with Gauss gradients as well, second order.
-// Pressure orders here are about 1.3, below the 1.5 of issue 22 (open).
+// Pressure orders here are about 1.3, below the 1.5 of issue 22 (open). The
+// curvature correction (with the interpolated form it needs) does not help
+// here: velocity orders 1.20 and 0.48 with Gauss gradients, 1.80 and 0.71
+// with least squares.
 TEST(MmsOrder, PolyhedralSplitFace) {
-  CheckOrder("polyhedral (2:1 split-face cells), Gauss gradients, face-centre non-orthogonal correction", 0.0, true,
-             GradientScheme::kGaussLinear, {8, 16, 32}, false, true);
+  CheckOrder("polyhedral (2:1 split-face cells), Gauss gradients, face-centre non-orthogonal correction",
+             GradientScheme::kGaussLinear, {8, 16, 32}, {.polyhedral = true, .face_centre = true});
+}
+
+// ---------------------------------------------------------------- truncation
+
+// The mesh under the smooth map x + a (sin(2 pi y) sin(pi x), sin(2 pi x) sin(pi y)):
+// skewed, non-orthogonal cells that stay smooth under refinement (the
+// square's sides stay where they are).
+Mesh SmoothlyMapped(const Mesh& mesh, double a) {
+  std::vector<Vector3> points = mesh.points();
+  for (Vector3& x : points) {
+    const double px = x.x(), py = x.y();
+    x.x() = px + a * std::sin(2 * kPi * py) * std::sin(kPi * px);
+    x.y() = py + a * std::sin(2 * kPi * px) * std::sin(kPi * py);
+  }
+  std::vector<std::vector<int>> faces;
+  for (int f = 0; f < mesh.n_faces(); ++f) faces.emplace_back(mesh.face(f).begin(), mesh.face(f).end());
+  return Mesh(std::move(points), std::move(faces), std::vector<int>(mesh.owner().begin(), mesh.owner().end()),
+              std::vector<int>(mesh.neighbour().begin(), mesh.neighbour().end()), mesh.patches(), "mapped");
+}
+
+// Analytic Laplacian of ExactU.
+Vector3 ExactLaplacianU(const Vector3& x) {
+  const double c = std::cos(kPi * x.y()), s = std::sin(kPi * x.y());
+  return Vector3(2 * c - kPi * kPi * (1 + x.x() * x.x()) * c, 2 * kPi * x.x() * s, 0.0);
+}
+
+// RMS over the cells at least 0.2 from the walls of the Laplacian of the
+// exact velocity (cell-centre values, least-squares gradients for the
+// non-orthogonal part) less its analytic value: the truncation error.
+double LaplacianTruncation(const Mesh& mesh, bool curvature) {
+  auto U = testing::MakeField<Vector3>("U", mesh, [](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
+    if (p.kind == PatchKind::kEmpty) return std::make_unique<Empty<Vector3>>();
+    return std::make_unique<FixedValue<Vector3>>(ValueFunction<Vector3>([](const Vector3& x, double) { return ExactU(x); }));
+  });
+  for (int c = 0; c < mesh.n_cells(); ++c) U->values()[c] = ExactU(mesh.cell_centres()[c]);
+  U->CorrectBoundary(0.0, std::vector<double>(mesh.n_faces(), 0.0));
+  GradientOptions options;
+  options.scheme = GradientScheme::kLeastSquares;
+  const Gradient gradient(mesh, options);
+  std::vector<Matrix3> grad;
+  gradient.Compute(std::span<const Vector3>(U->values()), std::span<const Vector3>(U->boundary()), grad);
+  const NonOrthGeometry geo(mesh);
+  FvMatrix<Vector3> m(mesh);
+  AddLaplacian(m, *U, 1.0, geo, &grad);
+  if (curvature) AddDiffusionCurvature(m, 1.0, DiffusionCurvatureTensors(mesh, geo), ComponentHessians(gradient, grad));
+  const std::vector<double> A = m.A();
+  const std::vector<Vector3> H = m.H(std::span<const Vector3>(U->values()));
+  double sum = 0.0, volume = 0.0;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    const Vector3& x = mesh.cell_centres()[c];
+    if (std::min({x.x(), x.y(), 1 - x.x(), 1 - x.y()}) < 0.2) continue;
+    const Vector3 minus_laplacian = A[c] * U->values()[c] - H[c];
+    sum += mesh.cell_volumes()[c] * (minus_laplacian + ExactLaplacianU(x)).squaredNorm();
+    volume += mesh.cell_volumes()[c];
+  }
+  return std::sqrt(sum / volume);
+}
+
+// Order of the truncation error between n = 64 and 128 (the mesh's h halves).
+template <typename MakeMeshAt>
+double TruncationOrder(const char* label, MakeMeshAt make, bool curvature) {
+  const double coarse = LaplacianTruncation(make(64), curvature), fine = LaplacianTruncation(make(128), curvature);
+  std::printf("%s: Laplacian truncation %.4e (n 64), %.4e (n 128)\n", label, coarse, fine);
+  return std::log(coarse / fine) / std::log(2.0);
+}
+
+TEST(MmsTruncation, LaplacianIsSecondOrderOnUniformAndSmoothlySkewedHexahedra) {
+  EXPECT_GE(TruncationOrder("uniform hex", [](int n) { return MakeMesh(n, 0.0, false, false); }, false), 1.9);
+  // Non-orthogonality up to 28 degrees.
+  EXPECT_GE(TruncationOrder("mapped hex", [](int n) { return SmoothlyMapped(MakeMesh(n, 0.0, false, false), 0.04); },
+                            false),
+            1.9);
+}
+
+// The median dual of a regular triangulation: every interior side face is
+// kinked. Measured: 0.7322 at n 64 and 0.7266 at n 128 without the
+// correction (order 0.01), 1.53e-3 and 3.80e-4 with it.
+TEST(MmsTruncation, CurvatureCorrectionMakesTheLaplacianSecondOrderOnKinkedFaces) {
+  auto dual = [](int n) { return MakeMesh(n, 0.0, false, true); };
+  EXPECT_GE(TruncationOrder("median dual, curvature correction", dual, true), 1.9);
+  EXPECT_GT(LaplacianTruncation(dual(128), false), 100.0 * LaplacianTruncation(dual(128), true));
+}
+
+// The correction completes the interpolated non-orthogonal form and the
+// skew-corrected Rhie-Chow flux: asked for without them, one error names both.
+TEST(MmsTruncation, CurvatureCorrectionRefusesTheSchemesItDoesNotComplete) {
+  const Mesh mesh = MakeMesh(4, 0.0, false, true);
+  auto make = [&](bool skew, bool face_centre) {
+    SchemeOptions schemes;
+    schemes.curvature_correction = true;
+    schemes.skew_correction = skew;
+    schemes.face_centre_correction = face_centre;
+    auto U = testing::MakeField<Vector3>("U", mesh, [](const Patch& p) -> std::unique_ptr<BoundaryCondition<Vector3>> {
+      if (p.kind == PatchKind::kEmpty) return std::make_unique<Empty<Vector3>>();
+      return std::make_unique<FixedValue<Vector3>>(ValueFunction<Vector3>([](const Vector3& x, double) { return ExactU(x); }));
+    });
+    auto p = testing::MakeField<double>("p", mesh, [](const Patch&) -> std::unique_ptr<BoundaryCondition<double>> {
+      return std::make_unique<ZeroGradient<double>>();
+    });
+    PimpleSolver solver(mesh, PhysicsOptions{}, schemes, PimpleOptions{}, std::move(U), std::move(p));
+  };
+  auto message = [&](bool skew, bool face_centre) -> std::string {
+    try {
+      make(skew, face_centre);
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_NE(message(false, false).find("schemes.curvature_correction: expected skew_correction true"), std::string::npos)
+      << message(false, false);
+  EXPECT_NE(message(true, true).find("schemes.curvature_correction: expected face_centre_correction false"),
+            std::string::npos)
+      << message(true, true);
+  EXPECT_NO_THROW(make(true, false));
 }
 
 }  // namespace
