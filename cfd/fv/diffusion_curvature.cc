@@ -30,22 +30,34 @@ std::vector<Matrix3> FaceFirstMoments(const Mesh& mesh) {
 }
 
 std::vector<Matrix3> DiffusionCurvatureTensors(const Mesh& mesh, const NonOrthGeometry& geo) {
-  KELVIN_CHECK(geo.owner_tangent.empty(), "the curvature correction is built on the interpolated non-orthogonal form");
   const int ni = mesh.n_internal_faces();
   const auto owner = mesh.owner();
   const auto neighbour = mesh.neighbour();
   const auto w = mesh.weights();
+  const bool face_centre_form = !geo.owner_tangent.empty();
   std::vector<Matrix3> c(ni);
   for (int f = 0; f < ni; ++f) {
     const Vector3& xp = mesh.cell_centres()[owner[f]];
     const Vector3& xn = mesh.cell_centres()[neighbour[f]];
     const Vector3& xc = mesh.face_centres()[f];
-    const Vector3 xm = 0.5 * (xp + xn);
-    const Vector3 xw = w[f] * xp + (1.0 - w[f]) * xn;
-    const Vector3 k = geo.correction.empty() ? Vector3::Zero() : geo.correction[f];
     const double mag = mesh.face_area_magnitudes()[f];
-    c[f] = mag * (geo.delta_coeffs[f] * (xc - xm) * mesh.deltas()[f].transpose() + (xc - xw) * k.transpose()) +
-           FaceFirstMoment(mesh, f);
+    const double dc = geo.delta_coeffs[f];
+    c[f] = FaceFirstMoment(mesh, f);
+    if (face_centre_form) {
+      // The values carried along the face to the normal through x_c, at
+      // P' = x_P + t_P and N' = x_N + t_N: their difference is the normal
+      // derivative at the midpoint of P'N', each carried value misses
+      // t^T H t / 2.
+      const Vector3 tp = geo.owner_tangent[f] / dc, tn = geo.neighbour_tangent[f] / dc;
+      const Vector3 n = mesh.face_areas()[f] / mag;
+      const Vector3 xm = 0.5 * (xp + tp + xn + tn);
+      c[f] += mag * ((xc - xm) * n.transpose() + 0.5 * dc * (tn * tn.transpose() - tp * tp.transpose()));
+    } else {
+      const Vector3 xm = 0.5 * (xp + xn);
+      const Vector3 xw = w[f] * xp + (1.0 - w[f]) * xn;
+      const Vector3 k = geo.correction.empty() ? Vector3::Zero() : geo.correction[f];
+      c[f] += mag * (dc * (xc - xm) * mesh.deltas()[f].transpose() + (xc - xw) * k.transpose());
+    }
   }
   return c;
 }

@@ -36,8 +36,10 @@ namespace kelvin::cfd {
 // v(x_c) . S_f + grad(v) : M_f^T to second order (J(i, j) = dv_i/dx_j).
 std::vector<Matrix3> FaceFirstMoments(const Mesh& mesh);
 
-// C_f of every internal face for the split n = dc d + k of `geo` (its
-// interpolated form; the face-centre form is refused).
+// C_f of every internal face for the non-orthogonal form of `geo`. In the
+// face-centre form the cell values are carried along the face to P' and N'
+// on the normal through x_c, and C_f = |S| [(x_c - x_m') (x) n
+// + dc (t_N (x) t_N - t_P (x) t_P) / 2] + sum_t ..., x_m' the midpoint of P'N'.
 std::vector<Matrix3> DiffusionCurvatureTensors(const Mesh& mesh, const NonOrthGeometry& geo);
 
 // The symmetric Hessian of each component of a vector field from its cell

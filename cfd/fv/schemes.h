@@ -30,8 +30,7 @@ struct SchemeOptions {
   // Curvature correction of the laminar momentum Laplacian on skewed and
   // kinked faces (cfd/fv/diffusion_curvature.h): second-order viscous fluxes
   // on polyhedral cells and refinement interfaces, at the cost of three more
-  // vector gradients per momentum assembly. Needs the interpolated
-  // non-orthogonal form (face_centre_correction false).
+  // vector gradients per momentum assembly. Needs skew_correction.
   bool curvature_correction = false;
   void Validate() const { gradient.Validate(); }
 };

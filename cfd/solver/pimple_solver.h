@@ -243,6 +243,7 @@ class PimpleSolver {
   std::vector<Vector3> skew_;  // internal faces, only with skew correction
   std::vector<Matrix3> curvature_;  // internal faces, only with the curvature correction
   std::vector<Matrix3> moments_;    // internal faces' first moments M_f, the same
+  std::unique_ptr<Gradient> hessian_gradient_;  // least squares, for the Hessians of the same
   std::vector<Vector3> grad_p_;
   std::vector<Vector3> source_;
   std::vector<Vector3> cell_source_;
