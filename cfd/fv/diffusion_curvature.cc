@@ -76,8 +76,11 @@ std::array<std::vector<Matrix3>, 3> ComponentHessians(const Gradient& gradient, 
   return h;
 }
 
-void AddDiffusionCurvature(FvMatrix<Vector3>& m, double gamma, std::span<const Matrix3> tensors,
-                           const std::array<std::vector<Matrix3>, 3>& hessians) {
+namespace {
+
+template <typename Gamma>
+void AddCurvatureFluxes(FvMatrix<Vector3>& m, const Gamma& gamma, std::span<const Matrix3> tensors,
+                        const std::array<std::vector<Matrix3>, 3>& hessians) {
   const Mesh& mesh = m.mesh();
   const auto owner = mesh.owner();
   const auto neighbour = mesh.neighbour();
@@ -88,11 +91,24 @@ void AddDiffusionCurvature(FvMatrix<Vector3>& m, double gamma, std::span<const M
     Vector3 flux;
     for (int i = 0; i < 3; ++i) {
       const Matrix3 hf = w[f] * hessians[i][P] + (1.0 - w[f]) * hessians[i][N];
-      flux[i] = gamma * hf.cwiseProduct(tensors[f]).sum();
+      flux[i] = gamma(f) * hf.cwiseProduct(tensors[f]).sum();
     }
     m.source[P] += flux;
     m.source[N] -= flux;
   }
+}
+
+}  // namespace
+
+void AddDiffusionCurvature(FvMatrix<Vector3>& m, double gamma, std::span<const Matrix3> tensors,
+                           const std::array<std::vector<Matrix3>, 3>& hessians) {
+  AddCurvatureFluxes(m, [gamma](int) { return gamma; }, tensors, hessians);
+}
+
+void AddDiffusionCurvature(FvMatrix<Vector3>& m, std::span<const double> gamma_faces, std::span<const Matrix3> tensors,
+                           const std::array<std::vector<Matrix3>, 3>& hessians) {
+  KELVIN_CHECK(static_cast<int>(gamma_faces.size()) == m.mesh().n_faces(), "one diffusivity per face");
+  AddCurvatureFluxes(m, [gamma_faces](int f) { return gamma_faces[f]; }, tensors, hessians);
 }
 
 }  // namespace kelvin::cfd

@@ -50,5 +50,8 @@ std::array<std::vector<Matrix3>, 3> ComponentHessians(const Gradient& gradient, 
 // flux_f += gamma H_f : C_f on every internal face of -div(gamma grad U).
 void AddDiffusionCurvature(FvMatrix<Vector3>& m, double gamma, std::span<const Matrix3> tensors,
                            const std::array<std::vector<Matrix3>, 3>& hessians);
+// The same with one diffusivity per face (every face; the internal ones are read).
+void AddDiffusionCurvature(FvMatrix<Vector3>& m, std::span<const double> gamma_faces, std::span<const Matrix3> tensors,
+                           const std::array<std::vector<Matrix3>, 3>& hessians);
 
 }  // namespace kelvin::cfd

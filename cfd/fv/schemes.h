@@ -27,10 +27,11 @@ struct SchemeOptions {
   // (phi_f += grad(phi)_f . (x_f - x_f')): keeps second order on skewed and
   // polyhedral meshes, at the cost of one more vector gradient per corrector.
   bool skew_correction = false;
-  // Curvature correction of the laminar momentum Laplacian on skewed and
-  // kinked faces (cfd/fv/diffusion_curvature.h): second-order viscous fluxes
-  // on polyhedral cells and refinement interfaces, at the cost of three more
-  // vector gradients per momentum assembly. Needs skew_correction.
+  // Curvature correction of the momentum Laplacian (nu, or the turbulence
+  // model's nu_eff on faces) on skewed and kinked faces
+  // (cfd/fv/diffusion_curvature.h): second-order viscous fluxes on polyhedral
+  // cells, at the cost of three more vector gradients per momentum assembly.
+  // Needs skew_correction.
   bool curvature_correction = false;
   void Validate() const { gradient.Validate(); }
 };

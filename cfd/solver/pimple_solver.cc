@@ -115,11 +115,6 @@ void PimpleSolver::SetTurbulence(std::unique_ptr<TurbulenceModel> model) {
                                   "the DomainPart the solver runs on",
                                   model->name()));
   }
-  if (model && schemes_.curvature_correction) {
-    throw ConfigError(fmt::format("schemes.curvature_correction: the {} model's stress has no curvature correction; "
-                                  "expected a laminar run",
-                                  model->name()));
-  }
   turbulence_ = std::move(model);
   if (initialized_ && turbulence_) turbulence_->Initialize(*U_, RelativeFlux());
 }
@@ -200,9 +195,13 @@ void PimpleSolver::AssembleMomentum(double dt, std::span<const double> flux_rel)
     turbulence_->AddDivDevReff(UEqn_, *U_, grad_U_, non_orth_, non_orth_correction_);
   } else {
     AddLaminarDivDevReff(UEqn_, *U_, physics_.nu, grad_U_, non_orth_, non_orth_correction_);
-    if (schemes_.curvature_correction) {
-      std::array<std::vector<Matrix3>, 3> hessians = ComponentHessians(*hessian_gradient_, grad_U_);
-      for (auto& h : hessians) Sync(h);
+  }
+  if (schemes_.curvature_correction) {
+    std::array<std::vector<Matrix3>, 3> hessians = ComponentHessians(*hessian_gradient_, grad_U_);
+    for (auto& h : hessians) Sync(h);
+    if (turbulence_) {
+      AddDiffusionCurvature(UEqn_, turbulence_->nu_eff_faces(), curvature_, hessians);
+    } else {
       AddDiffusionCurvature(UEqn_, physics_.nu, curvature_, hessians);
     }
   }
