@@ -44,6 +44,21 @@ std::vector<char*> LauncherEnvironment() {
   return env;
 }
 
+std::vector<std::string> WorkerCommand(const WorkerProgram& program, const std::vector<std::string>& args) {
+  std::vector<std::string> command;
+  if (program.ranks > 1) command = {program.launcher.string(), "-n", std::to_string(program.ranks)};
+  command.push_back(program.executable.string());
+  command.insert(command.end(), args.begin(), args.end());
+  return command;
+}
+
+std::vector<char*> ExecArgv(std::vector<std::string>& command) {
+  std::vector<char*> argv;
+  for (std::string& a : command) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  return argv;
+}
+
 pid_t SpawnWorker(const WorkerProgram& program, const std::vector<std::string>& args,
                   const fs::path& log, const std::string& run) {
   const bool on_ranks = program.ranks > 1;
@@ -53,13 +68,8 @@ pid_t SpawnWorker(const WorkerProgram& program, const std::vector<std::string>& 
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<std::string> all = {exe.string()};
-  if (on_ranks)
-    all.insert(all.end(), {"-n", std::to_string(program.ranks), program.executable.string()});
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  std::vector<std::string> command = WorkerCommand(program, args);
+  std::vector<char*> argv = ExecArgv(command);
   std::vector<char*> env = LauncherEnvironment();
   pid_t pid = -1;
   const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), on_ranks ? env.data() : environ);

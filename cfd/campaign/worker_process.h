@@ -29,6 +29,13 @@ struct WorkerProgram {
 // OMPI_MCA_rmaps_base_oversubscribe stay.
 std::vector<char*> LauncherEnvironment();
 
+// The command line of `program args...`: `launcher -n ranks executable
+// args...` when ranks > 1, else `executable args...`.
+std::vector<std::string> WorkerCommand(const WorkerProgram& program, const std::vector<std::string>& args);
+// Pointers to the strings of `command`, null-terminated, for exec (valid
+// while `command` is).
+std::vector<char*> ExecArgv(std::vector<std::string>& command);
+
 // Starts `program args...` with stdout and stderr into `log` (created or
 // truncated), a launcher with LauncherEnvironment(); returns its pid (the
 // launcher's on ranks). Throws InputError naming `run` if it cannot start.

@@ -76,12 +76,12 @@ void RunManeuvers(const std::string& case_file, const std::vector<std::string>& 
 
 // `--np N`: this command again under `mpiexec -n N` (replaces the process).
 [[noreturn]] void RelaunchOnRanks(int np, const std::vector<std::string>& run_args) {
-  const std::filesystem::path launcher = FindLauncher(np);
-  std::vector<std::string> argv = {launcher.string(), "-n", std::to_string(np), SelfExecutable().string(), "run"};
-  argv.insert(argv.end(), run_args.begin(), run_args.end());
-  std::vector<char*> c_argv;
-  for (std::string& a : argv) c_argv.push_back(a.data());
-  c_argv.push_back(nullptr);
+  const cfd::WorkerProgram program{SelfExecutable(), FindLauncher(np), np};
+  std::vector<std::string> args = {"run"};
+  args.insert(args.end(), run_args.begin(), run_args.end());
+  std::vector<std::string> command = cfd::WorkerCommand(program, args);
+  std::vector<char*> c_argv = cfd::ExecArgv(command);
+  const std::filesystem::path& launcher = program.launcher;
   std::fflush(nullptr);
   std::vector<char*> env = cfd::LauncherEnvironment();
   execve(launcher.c_str(), c_argv.data(), env.data());
