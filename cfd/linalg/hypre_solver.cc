@@ -59,6 +59,8 @@ struct HypreSolver::Impl {
 HypreSolver::HypreSolver(const LinearSolverOptions& options, const DomainPart* part)
     : options_(options), part_(part && part->parallel() ? part : nullptr) {
   options_.Validate();
+  KELVIN_CHECK(Amg() || options_.type == LinearSolverOptions::Type::kBiCgStabIlu,
+               "hypre's solvers here are CG with AMG and BiCGStab with ILU");
   EnsureMpi();
 }
 
@@ -187,11 +189,7 @@ void HypreSolver::CreateKrylov() {
     HYPRE_PCGSetTwoNorm(s.krylov, 1);
     HYPRE_PCGSetPrintLevel(s.krylov, 0);
     HYPRE_PCGSetLogging(s.krylov, 1);
-    if (Amg()) {
-      HYPRE_ParCSRPCGSetPrecond(s.krylov, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, s.precond);
-    } else {
-      HYPRE_ParCSRPCGSetPrecond(s.krylov, HYPRE_ParCSRDiagScale, HYPRE_ParCSRDiagScaleSetup, nullptr);
-    }
+    HYPRE_ParCSRPCGSetPrecond(s.krylov, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, s.precond);
     return;
   }
   HYPRE_ParCSRBiCGSTABCreate(comm, &s.krylov);
@@ -200,11 +198,7 @@ void HypreSolver::CreateKrylov() {
   HYPRE_ParCSRBiCGSTABSetAbsoluteTol(s.krylov, options_.absolute_tolerance);
   HYPRE_ParCSRBiCGSTABSetPrintLevel(s.krylov, 0);
   HYPRE_ParCSRBiCGSTABSetLogging(s.krylov, 1);
-  if (s.precond) {
-    HYPRE_ParCSRBiCGSTABSetPrecond(s.krylov, HYPRE_ILUSolve, HYPRE_ILUSetup, s.precond);
-  } else {
-    HYPRE_ParCSRBiCGSTABSetPrecond(s.krylov, HYPRE_ParCSRDiagScale, HYPRE_ParCSRDiagScaleSetup, nullptr);
-  }
+  HYPRE_ParCSRBiCGSTABSetPrecond(s.krylov, HYPRE_ILUSolve, HYPRE_ILUSetup, s.precond);
 }
 
 void HypreSolver::SetRelativeTolerance(double relative) {
@@ -227,8 +221,7 @@ SolverSummary HypreSolver::Solve(const CsrMatrix& a, std::span<const double> b, 
   HYPRE_IJMatrixAssemble(s.ij_a);
   HYPRE_IJVectorSetValues(s.ij_b, s.n, s.row_index.data(), b.data());
   HYPRE_IJVectorSetValues(s.ij_x, s.n, s.row_index.data(), x.data());
-  // ILU: a new factorization for the new values. Diagonal scaling reads the
-  // matrix's diagonal at each application and needs no new setup.
+  // ILU: a new factorization for the new values.
   if (options_.type == LinearSolverOptions::Type::kBiCgStabIlu) need_setup_ = true;
   if (need_setup_ || !s.has_setup) {
     if (Cg()) {

@@ -6,8 +6,8 @@
 //   equations dominated by convection, such as k and omega at large time
 //   steps). The factorization is redone at every solve (the values change
 //   every step; ILU(0) costs a few matrix-vector products).
-// - kBiCgStabJacobi, kCgJacobi: BiCGStab and CG with diagonal scaling, the
-//   momentum and scalar solvers of a decomposed mesh (Eigen's serially).
+// (BiCGStab and CG with Jacobi are Eigen's serially and PETSc's on a shell
+// matrix on ranks: linear_solver.h, petsc_shell_solver.h.)
 // The sparsity is given once; each solve copies the new values into the
 // existing ParCSR matrix. Serial runs are MPI singletons with the rows
 // 0..n-1; on a decomposed mesh (cfd/parallel/domain_part.h) each rank gives
@@ -26,7 +26,8 @@ void EnsureMpi();
 
 class HypreSolver : public LinearSolver {
  public:
-  // `part` (null: serial) must outlive the solver.
+  // `part` (null: serial) must outlive the solver. Types kPcgAmg and
+  // kBiCgStabIlu.
   explicit HypreSolver(const LinearSolverOptions& options, const DomainPart* part = nullptr);
   ~HypreSolver() override;
   HypreSolver(const HypreSolver&) = delete;
@@ -39,8 +40,8 @@ class HypreSolver : public LinearSolver {
 
  private:
   bool Amg() const { return options_.type == LinearSolverOptions::Type::kPcgAmg; }
-  // CG (AMG or Jacobi) rather than BiCGStab.
-  bool Cg() const { return Amg() || options_.type == LinearSolverOptions::Type::kCgJacobi; }
+  // CG (with AMG) rather than BiCGStab (with ILU).
+  bool Cg() const { return Amg(); }
   void Create(const CsrMatrix& a);
   void CreateMatrix(const CsrMatrix& a);
   void CreatePreconditioner();

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "cfd/linalg/hypre_solver.h"
+#include "cfd/linalg/petsc_shell_solver.h"
 #include "cfd/parallel/domain_part.h"
 #include "data/schema/errors.h"
 
@@ -115,7 +116,13 @@ class CgJacobi : public LinearSolver {
 
 std::unique_ptr<LinearSolver> LinearSolver::Create(const LinearSolverOptions& options, const DomainPart* part) {
   options.Validate();
-  if (part && part->parallel()) return std::make_unique<HypreSolver>(options, part);
+  if (part && part->parallel()) {
+    if (options.type == LinearSolverOptions::Type::kBiCgStabJacobi ||
+        options.type == LinearSolverOptions::Type::kCgJacobi) {
+      return std::make_unique<PetscShellSolver>(options, *part);
+    }
+    return std::make_unique<HypreSolver>(options, part);
+  }
   switch (options.type) {
     case LinearSolverOptions::Type::kBiCgStabJacobi:
       return std::make_unique<BiCgStabJacobi>(options);

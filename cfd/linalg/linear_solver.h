@@ -3,9 +3,10 @@
 // BoomerAMG (see hypre_solver.h); momentum and scalars use BiCGStab with
 // a Jacobi preconditioner (Eigen); the k and omega equations of SST use
 // hypre's BiCGStab with an ILU(0) preconditioner.
-// On a decomposed mesh (a parallel DomainPart) every solver is hypre's, on
-// the global rows of the owned cells: BiCGStab and CG with hypre's Jacobi
-// (diagonal scaling) in place of Eigen's.
+// On a decomposed mesh (a parallel DomainPart) the solvers run on the global
+// rows of the owned cells: BiCGStab and CG with Jacobi are PETSc's on a shell
+// matrix over the solver's own CsrMatrix (petsc_shell_solver.h), in place of
+// Eigen's; AMG and ILU stay hypre's.
 #pragma once
 
 #include <memory>

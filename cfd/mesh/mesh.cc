@@ -35,6 +35,11 @@ Mesh::Mesh(std::vector<Vector3> points, std::vector<std::vector<int>> faces, std
       neighbour_(std::move(neighbour)),
       patches_(std::move(patches)),
       source_(std::move(source)) {
+  // The mesh keeps these arrays for its lifetime: no spare capacity from how
+  // a reader or the decomposition grew them (up to twice the size).
+  points_.shrink_to_fit();
+  owner_.shrink_to_fit();
+  neighbour_.shrink_to_fit();
   // Compact face storage.
   face_offsets_.assign(faces.size() + 1, 0);
   for (std::size_t f = 0; f < faces.size(); ++f) {

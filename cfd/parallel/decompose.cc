@@ -89,6 +89,7 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
 
   // Local cells: owned, then ghosts, each in ascending global order.
   std::vector<int> local_of(nc, -1);
+  part->cells.reserve(std::count(cell_rank.begin(), cell_rank.end(), me));
   for (int c = 0; c < nc; ++c) {
     if (cell_rank[c] == me) {
       local_of[c] = static_cast<int>(part->cells.size());
@@ -111,6 +112,7 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
   std::sort(ghosts.begin(), ghosts.end());
   ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
   std::vector<GhostSource> sources;
+  part->cells.reserve(part->cells.size() + ghosts.size());
   for (int g : ghosts) {
     local_of[g] = static_cast<int>(part->cells.size());
     part->cells.push_back(g);
@@ -159,6 +161,7 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
   mark(processor);
   for (const auto& pf : patch_faces) mark(pf);
   std::vector<Vector3> points;
+  points.reserve(std::count_if(point_of.begin(), point_of.end(), [](int p) { return p >= 0; }));
   const bool placed = !mesh.placement_rotation().isIdentity() || !mesh.placement_translation().isZero();
   KELVIN_CHECK(!placed, "decompose the mesh in its body-fixed placement");
   for (int p = 0; p < mesh.n_points(); ++p) {
@@ -170,6 +173,13 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
   std::vector<std::vector<int>> faces;
   std::vector<int> owners, neighbours;
   std::vector<Patch> patches;
+  std::size_t n_faces = internal.size() + processor.size();
+  for (const auto& pf : patch_faces) n_faces += pf.size();
+  part->faces.reserve(n_faces);
+  part->face_signs.reserve(n_faces);
+  owners.reserve(n_faces);
+  neighbours.reserve(internal.size());
+  faces.reserve(n_faces);
   auto append = [&](const std::vector<LocalFace>& list) {
     for (const LocalFace& lf : list) {
       std::vector<int> pts(lf.points.size());

@@ -113,6 +113,7 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu)
     const std::vector<int> part = PartitionCells(*whole, size, MPI_COMM_WORLD);
     local = Decompose(*whole, part, MPI_COMM_WORLD);
     whole.reset();  // the whole mesh is not kept
+    malloc_trim(0);  // the decomposition's freed temporaries, as the run layer does (cfd/run/case_loader.cc)
   }
   const double decompose_s = MPI_Wtime() - t0;
   const Mesh& mesh = size > 1 ? *local.mesh : *whole;

@@ -113,7 +113,7 @@ Run by `tools/bench/parallel_speedup.py` on {date}, everything in one invocation
 after the other. Case: the lid-driven cube of `pimple_vs_openfoam` (laminar, Re 100, Euler, linear-upwind, 2 outer x
 2 pressure correctors, p relTol 0.01 / final 1e-6), {n}^3 = {cells:,} hexahedra from blockMesh; kelvin
 (`tools/bench/parallel_bench`) reads the same polyMesh, serially (the serial solver: Eigen BiCGStab for U) and on 2
-ranks (PT-Scotch partition, at least 2,000 cells per rank by default, ghost-cell halo over PetscSF, hypre BiCGStab + Jacobi for U, BoomerAMG for p); pimpleFoam
+ranks (PT-Scotch partition, at least 2,000 cells per rank by default, ghost-cell halo over PetscSF, PETSc BiCGStab + Jacobi on a shell matrix for U, hypre BoomerAMG for p); pimpleFoam
 serially and decomposed by decomposePar (simple, 2 x 1 x 1: Debian's OpenFOAM has no scotch) on 2 ranks. {steps} steps,
 dt = {dt:g} s; time per step is the median over the steps after the first (kelvin: wall clock between barriers;
 pimpleFoam: its ExecutionTime increments); kelvin ran {args.repeat} times each way, alternating, and the table gives
