@@ -434,7 +434,7 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
 #ifdef __GLIBC__
   // The decomposition's many small temporaries (a point list per face) stay
   // resident in malloc's heap once freed; hand the free pages back (on 2 ranks
-  // of a 373k-cell cube: 72 B per cell of peak memory, BENCHMARKS.md).
+  // of a 373k-cell cube: 75 B per cell of peak memory, BENCHMARKS.md).
   if (c.part) malloc_trim(0);
 #endif
   return c;
