@@ -128,7 +128,11 @@ SolverSummary PetscShellSolver::Solve(const CsrMatrix& a, std::span<const double
   s.local.resize(x.size());
   Check(VecPlaceArray(s.b, b.data()), "VecPlaceArray");
   Check(VecPlaceArray(s.x, x.data()), "VecPlaceArray");
-  // The operator's values changed: the Jacobi preconditioner reads them again.
+  // The operator's values changed behind the shell: mark it changed, or PETSc
+  // keeps the Jacobi diagonal of an earlier solve (and a restarted run, whose
+  // first solve takes a fresh one, would not repeat the uninterrupted run).
+  Check(MatAssemblyBegin(s.shell, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  Check(MatAssemblyEnd(s.shell, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   Check(KSPSetOperators(s.ksp, s.shell, s.shell), "KSPSetOperators");
   const PetscErrorCode solved = KSPSolve(s.ksp, s.b, s.x);
   PetscInt iterations = 0;
