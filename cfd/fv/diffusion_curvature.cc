@@ -29,8 +29,10 @@ std::vector<Matrix3> FaceFirstMoments(const Mesh& mesh) {
   return m;
 }
 
-std::vector<Matrix3> DiffusionCurvatureTensors(const Mesh& mesh, const NonOrthGeometry& geo) {
+std::vector<Matrix3> DiffusionCurvatureTensors(const Mesh& mesh, const NonOrthGeometry& geo,
+                                               std::span<const Matrix3> moments) {
   const int ni = mesh.n_internal_faces();
+  KELVIN_CHECK(static_cast<int>(moments.size()) == ni, "one first moment per internal face");
   const auto owner = mesh.owner();
   const auto neighbour = mesh.neighbour();
   const auto w = mesh.weights();
@@ -42,7 +44,7 @@ std::vector<Matrix3> DiffusionCurvatureTensors(const Mesh& mesh, const NonOrthGe
     const Vector3& xc = mesh.face_centres()[f];
     const double mag = mesh.face_area_magnitudes()[f];
     const double dc = geo.delta_coeffs[f];
-    c[f] = FaceFirstMoment(mesh, f);
+    c[f] = moments[f];
     if (face_centre_form) {
       // The values carried along the face to the normal through x_c, at
       // P' = x_P + t_P and N' = x_N + t_N: their difference is the normal

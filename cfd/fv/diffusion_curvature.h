@@ -36,11 +36,13 @@ namespace kelvin::cfd {
 // v(x_c) . S_f + grad(v) : M_f^T to second order (J(i, j) = dv_i/dx_j).
 std::vector<Matrix3> FaceFirstMoments(const Mesh& mesh);
 
-// C_f of every internal face for the non-orthogonal form of `geo`. In the
-// face-centre form the cell values are carried along the face to P' and N'
-// on the normal through x_c, and C_f = |S| [(x_c - x_m') (x) n
-// + dc (t_N (x) t_N - t_P (x) t_P) / 2] + sum_t ..., x_m' the midpoint of P'N'.
-std::vector<Matrix3> DiffusionCurvatureTensors(const Mesh& mesh, const NonOrthGeometry& geo);
+// C_f of every internal face for the non-orthogonal form of `geo`, from the
+// faces' first moments (FaceFirstMoments). In the face-centre form the cell
+// values are carried along the face to P' and N' on the normal through x_c,
+// and C_f = |S| [(x_c - x_m') (x) n + dc (t_N (x) t_N - t_P (x) t_P) / 2] + M_f,
+// x_m' the midpoint of P'N'.
+std::vector<Matrix3> DiffusionCurvatureTensors(const Mesh& mesh, const NonOrthGeometry& geo,
+                                               std::span<const Matrix3> moments);
 
 // The symmetric Hessian of each component of a vector field from its cell
 // gradient J (J(i, j) = du_i/dx_j): the gradient of row i, with the owner

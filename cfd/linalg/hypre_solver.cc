@@ -69,7 +69,7 @@ HypreSolver::~HypreSolver() { Destroy(); }
 void HypreSolver::Destroy() {
   if (!impl_) return;
   if (impl_->krylov) {
-    if (Cg()) {
+    if (Amg()) {
       HYPRE_ParCSRPCGDestroy(impl_->krylov);
     } else {
       HYPRE_ParCSRBiCGSTABDestroy(impl_->krylov);
@@ -181,7 +181,7 @@ void HypreSolver::CreatePreconditioner() {
 void HypreSolver::CreateKrylov() {
   Impl& s = *impl_;
   const MPI_Comm comm = part_ ? part_->comm : MPI_COMM_SELF;  // serial solves are each process's own
-  if (Cg()) {
+  if (Amg()) {
     HYPRE_ParCSRPCGCreate(comm, &s.krylov);
     HYPRE_PCGSetMaxIter(s.krylov, options_.max_iterations);
     HYPRE_PCGSetTol(s.krylov, options_.relative_tolerance);
@@ -204,7 +204,7 @@ void HypreSolver::CreateKrylov() {
 void HypreSolver::SetRelativeTolerance(double relative) {
   options_.relative_tolerance = relative;
   if (!impl_) return;
-  if (Cg()) {
+  if (Amg()) {
     HYPRE_PCGSetTol(impl_->krylov, relative);
   } else {
     HYPRE_ParCSRBiCGSTABSetTol(impl_->krylov, relative);
@@ -224,7 +224,7 @@ SolverSummary HypreSolver::Solve(const CsrMatrix& a, std::span<const double> b, 
   // ILU: a new factorization for the new values.
   if (options_.type == LinearSolverOptions::Type::kBiCgStabIlu) need_setup_ = true;
   if (need_setup_ || !s.has_setup) {
-    if (Cg()) {
+    if (Amg()) {
       HYPRE_ParCSRPCGSetup(s.krylov, s.a, s.b, s.x);
     } else {
       HYPRE_ParCSRBiCGSTABSetup(s.krylov, s.a, s.b, s.x);
@@ -236,7 +236,7 @@ SolverSummary HypreSolver::Solve(const CsrMatrix& a, std::span<const double> b, 
   }
   HYPRE_Int iterations = 0;
   HYPRE_Real rel = 0.0;
-  if (Cg()) {
+  if (Amg()) {
     HYPRE_ParCSRPCGSolve(s.krylov, s.a, s.b, s.x);
     HYPRE_PCGGetNumIterations(s.krylov, &iterations);
     HYPRE_PCGGetFinalRelativeResidualNorm(s.krylov, &rel);

@@ -39,9 +39,8 @@ class HypreSolver : public LinearSolver {
   int setups() const { return setups_; }
 
  private:
+  // CG with AMG; otherwise BiCGStab with ILU.
   bool Amg() const { return options_.type == LinearSolverOptions::Type::kPcgAmg; }
-  // CG (with AMG) rather than BiCGStab (with ILU).
-  bool Cg() const { return Amg(); }
   void Create(const CsrMatrix& a);
   void CreateMatrix(const CsrMatrix& a);
   void CreatePreconditioner();

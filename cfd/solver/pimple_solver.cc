@@ -83,8 +83,7 @@ PimpleSolver::PimpleSolver(const Mesh& mesh, PhysicsOptions physics, SchemeOptio
       throw ConfigError("schemes.curvature_correction: expected skew_correction true as well (the Rhie-Chow flux "
                         "through kinked faces takes the skew-corrected gradient)");
     }
-    curvature_ = DiffusionCurvatureTensors(mesh, non_orth_);
-    moments_ = FaceFirstMoments(mesh);
+    UpdateCurvatureGeometry();
     // Least squares, exact for linear fields on any cells (Gauss is not on
     // split faces, and its Hessians were O(1) wrong there).
     GradientOptions least_squares;
@@ -126,10 +125,14 @@ void PimpleSolver::RefreshGeometry() {
   non_orth_correction_ = schemes_.non_orthogonal_correction && non_orth_.any_correction;
   if (schemes_.skew_correction) skew_ = mesh_.SkewVectors();
   if (schemes_.curvature_correction) {
-    curvature_ = DiffusionCurvatureTensors(mesh_, non_orth_);
-    moments_ = FaceFirstMoments(mesh_);
+    UpdateCurvatureGeometry();
     hessian_gradient_->UpdateGeometry();
   }
+}
+
+void PimpleSolver::UpdateCurvatureGeometry() {
+  moments_ = FaceFirstMoments(mesh_);
+  curvature_ = DiffusionCurvatureTensors(mesh_, non_orth_, moments_);
 }
 
 void PimpleSolver::MoveMesh(bool carry_old_fluxes) {

@@ -168,6 +168,8 @@ class PimpleSolver {
   void SetState(const State& state);
 
  private:
+  // The faces' first moments and curvature tensors (curvature correction).
+  void UpdateCurvatureGeometry();
   void Initialize();
   // Runs the moving-mesh stage at time_ (no-op without a motion).
   void MoveMesh(bool carry_old_fluxes);

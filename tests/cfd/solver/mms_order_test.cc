@@ -322,7 +322,7 @@ double LaplacianTruncation(const Mesh& mesh, Curvature curvature, Derivatives de
   const NonOrthGeometry geo(mesh, form);
   FvMatrix<Vector3> m(mesh);
   AddLaplacian(m, *U, 1.0, geo, &grad);
-  if (curvature == Curvature::kOn) AddDiffusionCurvature(m, 1.0, DiffusionCurvatureTensors(mesh, geo), hessians);
+  if (curvature == Curvature::kOn) AddDiffusionCurvature(m, 1.0, DiffusionCurvatureTensors(mesh, geo, FaceFirstMoments(mesh)), hessians);
   const std::vector<double> A = m.A();
   const std::vector<Vector3> H = m.H(std::span<const Vector3>(U->values()));
   double sum = 0.0, volume = 0.0;
