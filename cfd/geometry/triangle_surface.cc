@@ -16,6 +16,7 @@
 #include "cfd/geometry/hydrostatics.h"
 #include "data/schema/atomic_file.h"
 #include "data/schema/errors.h"
+#include "data/schema/file_status.h"
 
 namespace kelvin::cfd {
 
@@ -29,8 +30,8 @@ namespace {
 
 // The whole file, as bytes.
 std::string ReadBytes(const fs::path& path) {
-  if (!fs::exists(path)) Fail(path, "file not found");
-  if (fs::is_directory(path)) Fail(path, "is a directory; expected a surface file");
+  if (!data::PathExists(path)) Fail(path, "file not found");
+  if (data::IsExistingDirectory(path)) Fail(path, "is a directory; expected a surface file");
   std::ifstream in(path, std::ios::binary);
   if (!in) Fail(path, "cannot open");
   std::string raw(static_cast<std::size_t>(fs::file_size(path)), '\0');

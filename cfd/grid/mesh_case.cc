@@ -14,6 +14,7 @@
 #include "data/schema/atomic_file.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
+#include "data/schema/file_status.h"
 
 namespace kelvin::cfd {
 
@@ -177,7 +178,7 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
     const ConfigNode ship = hull["ship"];
     fs::path p = ship.As<std::string>();
     if (p.is_relative()) p = base_dir / p;
-    if (!fs::exists(p))
+    if (!data::PathExists(p))
       ship.Fail("an existing ship file (relative paths start at the case file's folder)");
     c.ship_file = p;
     const ConfigNode sf = ConfigNode::LoadFile(p);
@@ -255,7 +256,7 @@ MeshCase ParseMeshCase(const std::string& yaml_text, const std::string& source,
 }
 
 MeshCase LoadMeshCase(const fs::path& path) {
-  if (!fs::exists(path)) throw ConfigError(fmt::format("{}: file not found", path.string()));
+  if (!data::PathExists(path)) throw ConfigError(fmt::format("{}: file not found", path.string()));
   std::ifstream in(path);
   std::ostringstream text;
   text << in.rdbuf();

@@ -15,6 +15,7 @@
 #include "cfd/mesh/poly_mesh_reader.h"
 #include "data/schema/atomic_file.h"
 #include "data/schema/errors.h"
+#include "data/schema/file_status.h"
 
 namespace kelvin::cfd {
 
@@ -146,7 +147,7 @@ double RunTool(const SnappyOptions& o, const fs::path& case_dir, const std::stri
   // relative `kelvin mesh -o DIR` must not be resolved a second time there.
   const fs::path dir = fs::absolute(case_dir);
   const fs::path log = dir / ("log." + name);
-  if (!fs::exists(o.openfoam_bashrc)) {
+  if (!data::PathExists(o.openfoam_bashrc)) {
     throw DataFileError(
         fmt::format("{}: OpenFOAM environment not found (snappy option 'openfoam_bashrc'); install "
                     "Debian's openfoam package (tools/setup)",

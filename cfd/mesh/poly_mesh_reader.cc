@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "data/schema/errors.h"
+#include "data/schema/file_status.h"
 
 namespace kelvin::cfd {
 namespace {
@@ -210,9 +211,9 @@ class FoamFile {
 
 // The text of one polyMesh file.
 std::string ReadFoamText(const fs::path& path) {
-  if (!fs::exists(path)) {
+  if (!data::PathExists(path)) {
     const std::string where = path.string();
-    if (fs::exists(where + ".gz")) {
+    if (data::PathExists(where + ".gz")) {
       throw DataFileError(fmt::format("{}: is gzip-compressed ({}.gz); expected an uncompressed file (run "
                                       "foamFormatConvert or set writeCompression off)",
                                       where, path.filename().string()));
@@ -450,7 +451,7 @@ std::vector<Patch> ParsePolyMeshBoundary(const std::string& text, const fs::path
 }
 
 Mesh ReadPolyMesh(const fs::path& dir) {
-  if (!fs::is_directory(dir)) {
+  if (!data::IsExistingDirectory(dir)) {
     throw DataFileError(fmt::format("{}: not a directory; expected an OpenFOAM constant/polyMesh directory",
                                     dir.string()));
   }

@@ -12,6 +12,7 @@
 #include "cfd/parallel/state_layout.h"
 #include "data/reference/friction_lines.h"
 #include "data/schema/errors.h"
+#include "data/schema/file_status.h"
 #include "data/schema/h5_file.h"
 
 namespace kelvin::cfd {
@@ -177,7 +178,7 @@ std::string ResistanceMonitor::WriteSplit(data::H5Writer& w) const {
 
 std::string ResistanceMonitor::WriteWaveMaking(data::H5Writer& w) const {
   if (options_.double_body.empty()) return "";
-  if (!std::filesystem::exists(options_.double_body)) {
+  if (!data::PathExists(options_.double_body)) {
     return fmt::format("; no wave-making part: the double-body result {} does not exist (run it first)",
                        options_.double_body.string());
   }

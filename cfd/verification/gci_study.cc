@@ -14,6 +14,7 @@
 #include "data/schema/atomic_file.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
+#include "data/schema/file_status.h"
 #include "data/schema/h5_file.h"
 
 namespace kelvin::cfd {
@@ -127,12 +128,12 @@ std::vector<FamilyGrid> ReadGridFamily(const fs::path& dir, int family, double r
     throw ArgumentError(fmt::format("--family {}: a GCI study needs three grids (--family 3)", family));
   }
   const fs::path table = dir / "family.txt";
-  if (!fs::is_directory(dir)) {
+  if (!data::IsExistingDirectory(dir)) {
     throw DataFileError(fmt::format("grid family directory '{}' does not exist (make it with kelvin mesh "
                                     "mesh.yaml --family {} -o DIR)",
                                     dir.string(), family));
   }
-  if (!fs::exists(table)) {
+  if (!data::PathExists(table)) {
     throw DataFileError(fmt::format("'{}' is missing: '{}' is not a grid family written by kelvin mesh --family",
                                     table.string(), dir.string()));
   }
@@ -144,7 +145,7 @@ std::vector<FamilyGrid> ReadGridFamily(const fs::path& dir, int family, double r
   grids.resize(family);
   for (FamilyGrid& g : grids) {
     g.poly_mesh = dir / fmt::format("grid{}", g.level) / "constant" / "polyMesh";
-    if (!fs::exists(g.poly_mesh / "owner")) {
+    if (!data::PathExists(g.poly_mesh / "owner")) {
       throw DataFileError(fmt::format("{}: grid {} is listed but '{}' holds no polyMesh", table.string(), g.level,
                                       g.poly_mesh.string()));
     }
@@ -171,7 +172,7 @@ std::vector<FamilyGrid> ReadGridFamily(const fs::path& dir, int family, double r
 
 double ExtractOutput(const fs::path& history, const std::string& name, int average) {
   if (average < 1) throw ArgumentError(fmt::format("--average {}: expected a number of steps >= 1", average));
-  if (!fs::exists(history)) {
+  if (!data::PathExists(history)) {
     throw DataFileError(fmt::format("'{}' is missing (the run did not write its history)", history.string()));
   }
   const data::H5Reader h5(history);

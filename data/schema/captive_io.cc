@@ -11,6 +11,7 @@
 
 #include "data/schema/atomic_file.h"
 #include "data/schema/errors.h"
+#include "data/schema/file_status.h"
 #include "data/schema/h5_file.h"
 
 namespace kelvin::data {
@@ -123,7 +124,7 @@ void WriteCampaignH5(const CaptiveCampaign& campaign, H5Writer& w) {
 }
 
 CaptiveCampaign ReadCampaignH5(const fs::path& path) {
-  if (!fs::exists(path)) throw DataFileError(fmt::format("{}: no such file", path.string()));
+  if (!data::PathExists(path)) throw DataFileError(fmt::format("{}: no such file", path.string()));
   const H5Reader r(path);
   const std::string src = path.string();
   if (!r.HasAttribute("/", "schema") || r.StringAttribute("/", "schema") != kCaptiveSchema) {

@@ -1,5 +1,7 @@
 #include "data/schema/config.h"
 
+#include "data/schema/file_status.h"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -65,10 +67,10 @@ std::optional<std::string> ClosestMatch(std::string_view word, std::span<const s
 }
 
 ConfigNode ConfigNode::LoadFile(const std::filesystem::path& path) {
-  if (!std::filesystem::exists(path)) {
+  if (!data::PathExists(path)) {
     throw ConfigError(fmt::format("{}: file not found", path.string()));
   }
-  if (std::filesystem::is_directory(path)) {
+  if (data::IsExistingDirectory(path)) {
     throw ConfigError(fmt::format("{}: is a directory; expected a YAML file", path.string()));
   }
   try {

@@ -8,6 +8,7 @@
 
 #include "data/schema/atomic_file.h"
 #include "data/schema/errors.h"
+#include "data/schema/file_status.h"
 
 namespace kelvin::data {
 
@@ -356,7 +357,7 @@ void H5Writer::Commit() {
 
 H5Reader::H5Reader(fs::path path) : path_(std::move(path)) {
   QuietHdf5();
-  if (!fs::exists(path_)) Fail(path_, "", "file not found");
+  if (!data::PathExists(path_)) Fail(path_, "", "file not found");
   if (H5Fis_hdf5(path_.c_str()) <= 0) Fail(path_, "", "not an HDF5 file");
   file_ = H5Handle(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file_.valid()) Fail(path_, "", "cannot open HDF5 file");

@@ -15,6 +15,7 @@
 #include "data/schema/atomic_file.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
+#include "data/schema/file_status.h"
 #include "data/schema/h5_file.h"
 #include "simulator/maneuvers/identified_range.h"
 #include "simulator/mmg/surrogate.h"
@@ -247,15 +248,15 @@ CheckTolerances ParseCheckTolerances(std::string_view text, CheckTolerances base
 }
 
 SurrogateCheck RunSurrogateCheck(const SurrogateCheckOptions& o) {
-  if (!fs::exists(o.derivatives)) {
+  if (!data::PathExists(o.derivatives)) {
     throw ArgumentError(fmt::format("derivative set {}: file not found", o.derivatives.string()));
   }
-  if (!fs::exists(o.ship)) throw ArgumentError(fmt::format("--ship {}: file not found", o.ship.string()));
+  if (!data::PathExists(o.ship)) throw ArgumentError(fmt::format("--ship {}: file not found", o.ship.string()));
   if (o.references.empty()) {
     throw ArgumentError("--against: no reference file given; expected one or more maneuver result files (HDF5)");
   }
   for (const fs::path& r : o.references) {
-    if (!fs::exists(r)) throw ArgumentError(fmt::format("--against {}: file not found", r.string()));
+    if (!data::PathExists(r)) throw ArgumentError(fmt::format("--against {}: file not found", r.string()));
   }
   std::vector<ManeuverSpec> asked;
   for (const std::string& m : o.maneuvers) asked.push_back(ManeuverSpec::Parse(m));

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "cfd/mesh/poly_mesh_reader.h"
+#include "data/schema/config.h"
 #include "data/schema/errors.h"
 #include "tests/test_utilities/test_utilities.h"
 
@@ -210,6 +211,18 @@ void CheckVtu(const std::filesystem::path& path, const Mesh& mesh) {
   EXPECT_EQ(array("volume").size(), 8u * mesh.n_cells());
   EXPECT_EQ(array("non_orthogonality").size(), 8u * mesh.n_cells());
   EXPECT_NE(text.find("</VTKFile>", base), std::string::npos);
+}
+
+// A path the file system cannot examine (a name longer than NAME_MAX, found by
+// the mesh_case_yaml fuzzer) is a missing file with the key named, not a
+// std::filesystem exception that ends the program.
+TEST(MeshCaseTest, ShipPathTheFileSystemCannotExamineIsAMissingFile) {
+  const std::string name(300, 'x');
+  const std::string text = Edit("    wigley: {length: 2.5, beam: 0.25, draft: 0.15625}", "    ship: /" + name + "/s.yaml");
+  EXPECT_THAT(ErrorOf([&] { Parse(text); }),
+              AllOf(HasSubstr("key 'mesh.hull.ship' = '/" + name), HasSubstr("expected an existing ship file")));
+  EXPECT_THAT(ErrorOf([&] { data::ConfigNode::LoadFile("/" + name + ".yaml"); }),
+              HasSubstr(name + ".yaml: file not found"));
 }
 
 TEST(MeshCaseTest, FamilyIsWrittenAndReadBack) {
