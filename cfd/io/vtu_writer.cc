@@ -9,13 +9,19 @@
 
 namespace kelvin::cfd {
 
-void WriteVtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<VtuCellData>& data) {
+void WriteVtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<VtuCellData>& data,
+              int n_cells) {
+  const int nc = n_cells < 0 ? mesh.n_cells() : n_cells;
+  KELVIN_CHECK(nc <= mesh.n_cells(), "a piece holds cells of its mesh");
+  for (const VtuCellData& d : data) {
+    KELVIN_CHECK(d.values.size() >= static_cast<std::size_t>(nc) * d.components, "a value per cell written");
+  }
   std::string out;
-  out.reserve(static_cast<std::size_t>(mesh.n_cells()) * 400);
+  out.reserve(static_cast<std::size_t>(nc) * 400);
   auto append = [&out](const std::string& s) { out += s; };
   append("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n");
   append(fmt::format("<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", mesh.n_points(),
-                     mesh.n_cells()));
+                     nc));
   append("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
   for (const Vector3& p : mesh.points()) append(fmt::format("{:.9g} {:.9g} {:.9g}\n", p.x(), p.y(), p.z()));
   append("</DataArray>\n</Points>\n<Cells>\n");
@@ -26,7 +32,7 @@ void WriteVtu(const std::filesystem::path& path, const Mesh& mesh, const std::ve
   const auto off = mesh.cell_face_offsets();
   const auto cf = mesh.cell_faces();
   std::vector<int> pts;
-  for (int c = 0; c < mesh.n_cells(); ++c) {
+  for (int c = 0; c < nc; ++c) {
     pts.clear();
     std::string cell_faces = fmt::format("{}", off[c + 1] - off[c]);
     long long n_face_entries = 1;
@@ -62,7 +68,7 @@ void WriteVtu(const std::filesystem::path& path, const Mesh& mesh, const std::ve
   for (const VtuCellData& d : data) {
     append(fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
                        d.name, d.components));
-    for (int c = 0; c < mesh.n_cells(); ++c) {
+    for (int c = 0; c < nc; ++c) {
       for (int k = 0; k < d.components; ++k) {
         append(fmt::format("{:.9g}{}", d.values[static_cast<std::size_t>(c) * d.components + k],
                            k + 1 == d.components ? "\n" : " "));
@@ -121,6 +127,37 @@ void WritePatchVtp(const std::filesystem::path& path, const Mesh& mesh, const Pa
   }
   out += "</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
   data::WriteFileAtomically(path, out);
+}
+
+namespace {
+
+// The index of a dataset in pieces: `kind` is "UnstructuredGrid" or "PolyData".
+void WriteParallelIndex(const std::filesystem::path& path, const std::string& kind,
+                        const std::vector<std::string>& pieces, const std::vector<VtuCellData>& data) {
+  std::string out = fmt::format(
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"P{0}\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+      "<P{0} GhostLevel=\"0\">\n<PPoints>\n<PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n</PPoints>\n"
+      "<PCellData>\n",
+      kind);
+  for (const VtuCellData& d : data) {
+    out += fmt::format("<PDataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\"/>\n", d.name, d.components);
+  }
+  out += "</PCellData>\n";
+  for (const std::string& piece : pieces) out += fmt::format("<Piece Source=\"{}\"/>\n", piece);
+  out += fmt::format("</P{}>\n</VTKFile>\n", kind);
+  data::WriteFileAtomically(path, out);
+}
+
+}  // namespace
+
+void WritePvtu(const std::filesystem::path& path, const std::vector<std::string>& pieces,
+               const std::vector<VtuCellData>& data) {
+  WriteParallelIndex(path, "UnstructuredGrid", pieces, data);
+}
+
+void WritePvtp(const std::filesystem::path& path, const std::vector<std::string>& pieces,
+               const std::vector<VtuCellData>& face_data) {
+  WriteParallelIndex(path, "PolyData", pieces, face_data);
 }
 
 void PvdSeries::Add(double time, const std::filesystem::path& vtu_file) {

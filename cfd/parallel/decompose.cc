@@ -120,9 +120,32 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
   }
   auto owned = [&](int local) { return local >= 0 && local < part->n_owned; };
 
-  // Faces.
+  // Faces, in lists sized exactly first: the decomposition's transient sets
+  // a rank's peak memory, and grown lists hold up to twice their size.
   std::vector<LocalFace> internal, processor;
   std::vector<std::vector<LocalFace>> patch_faces(mesh.patches().size());
+  {
+    std::size_t n_internal = 0, n_processor = 0;
+    for (int f = 0; f < mesh.n_internal_faces(); ++f) {
+      const int lp = local_of[owner[f]], ln = local_of[neighbour[f]];
+      if (owned(lp) || owned(ln)) {
+        ++n_internal;
+      } else {
+        n_processor += (lp >= 0) + (ln >= 0);
+      }
+    }
+    for (std::size_t pi = 0; pi < mesh.patches().size(); ++pi) {
+      const Patch& patch = mesh.patches()[pi];
+      std::size_t n_patch = 0;
+      for (int f = patch.start; f < patch.start + patch.size; ++f) {
+        const int lp = local_of[owner[f]];
+        if (lp >= 0) ++(owned(lp) ? n_patch : n_processor);
+      }
+      patch_faces[pi].reserve(n_patch);
+    }
+    internal.reserve(n_internal);
+    processor.reserve(n_processor);
+  }
   for (int f = 0; f < mesh.n_internal_faces(); ++f) {
     const int lp = local_of[owner[f]], ln = local_of[neighbour[f]];
     const auto pts = mesh.face(f);
@@ -180,16 +203,18 @@ LocalDomain Decompose(const Mesh& mesh, std::span<const int> cell_rank, MPI_Comm
   owners.reserve(n_faces);
   neighbours.reserve(internal.size());
   faces.reserve(n_faces);
-  auto append = [&](const std::vector<LocalFace>& list) {
-    for (const LocalFace& lf : list) {
-      std::vector<int> pts(lf.points.size());
-      for (std::size_t i = 0; i < pts.size(); ++i) pts[i] = point_of[lf.points[i]];
-      faces.push_back(std::move(pts));
+  // Each list's point labels are renumbered in place and handed over, and
+  // the list is released once appended.
+  auto append = [&](std::vector<LocalFace>& list) {
+    for (LocalFace& lf : list) {
+      for (int& p : lf.points) p = point_of[p];
+      faces.push_back(std::move(lf.points));
       part->faces.push_back(lf.global);
       part->face_signs.push_back(lf.sign);
       owners.push_back(lf.owner);
       if (lf.neighbour >= 0) neighbours.push_back(lf.neighbour);
     }
+    std::vector<LocalFace>().swap(list);
   };
   append(internal);
   for (std::size_t pi = 0; pi < mesh.patches().size(); ++pi) {

@@ -85,6 +85,32 @@ void OnFirstRank(MPI_Comm comm, const std::function<void()>& write) {
   if (!error.empty()) throw DataFileError(error);
 }
 
+void OnEveryRank(const DomainPart* part, const std::function<void()>& write) {
+  const MPI_Comm comm = CommOf(part);
+  if (!SeveralRanks(comm)) {
+    write();
+    return;
+  }
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  std::string error;
+  try {
+    write();
+  } catch (const std::exception& e) {  // a DataFileError, or the file system's own
+    error = e.what();
+    if (error.empty()) error = "a file could not be written";
+  }
+  int first = error.empty() ? size : rank;
+  MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == size) return;
+  int n = static_cast<int>(error.size());
+  MPI_Bcast(&n, 1, MPI_INT, first, comm);
+  error.resize(static_cast<std::size_t>(n));
+  MPI_Bcast(error.data(), n, MPI_CHAR, first, comm);
+  throw DataFileError(error);
+}
+
 std::string FromFirstRank(const DomainPart* part, std::string text) {
   return FromFirstRank(CommOf(part), std::move(text));
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 
 #include "cfd/parallel/decompose.h"
 #include "data/schema/errors.h"
@@ -134,19 +135,31 @@ std::vector<double> GatherBoundaryFaces(const DomainPart& part, const Mesh& mesh
       [&](std::size_t b) { return std::pair<long long, double>(part.faces[b + ni] - gi, 1.0); });
 }
 
+std::vector<int> WholePatchIndices(const DomainPart* part, const Mesh& mesh, int patch) {
+  const Patch& p = mesh.patches()[patch];
+  std::vector<int> out(p.size);
+  if (!part || !part->parallel()) {
+    std::iota(out.begin(), out.end(), 0);
+    return out;
+  }
+  // The patch's faces are contiguous in the whole mesh, each on one rank.
+  double first = std::numeric_limits<double>::max();
+  for (int f = p.start; f < p.start + p.size; ++f) first = std::min(first, static_cast<double>(part->faces[f]));
+  const auto start = static_cast<long long>(part->Min(first));
+  for (int i = 0; i < p.size; ++i) out[i] = static_cast<int>(part->faces[p.start + i] - start);
+  return out;
+}
+
 std::vector<Vector3> GatherPatchFaces(const DomainPart* part, const Mesh& mesh, int patch,
                                       std::span<const Vector3> local) {
   const Patch& p = mesh.patches()[patch];
   KELVIN_CHECK(static_cast<int>(local.size()) == p.size, "one value per face of the patch");
   if (!part || !part->parallel()) return {local.begin(), local.end()};
-  // The patch's faces are contiguous in the whole mesh, each on one rank.
-  double first = std::numeric_limits<double>::max();
-  for (int f = p.start; f < p.start + p.size; ++f) first = std::min(first, static_cast<double>(part->faces[f]));
-  const auto start = static_cast<long long>(part->Min(first));
+  const std::vector<int> index = WholePatchIndices(part, mesh, patch);
   const auto n = static_cast<std::size_t>(part->Sum(p.size));
   const std::vector<double> sum = Reduce(
       *part, n, local.empty() ? nullptr : local.front().data(), local.size(), 3, [](std::size_t) { return true; },
-      [&](std::size_t i) { return std::pair<long long, double>(part->faces[p.start + i] - start, 1.0); });
+      [&](std::size_t i) { return std::pair<long long, double>(index[i], 1.0); });
   std::vector<Vector3> out(n);
   for (std::size_t i = 0; i < n; ++i) out[i] = Vector3(sum[3 * i], sum[3 * i + 1], sum[3 * i + 2]);
   return out;

@@ -25,8 +25,13 @@ PimpleSolver::State ScatterState(const DomainPart& part, const Mesh& mesh, const
 
 // One value per boundary face of the rank's local mesh `mesh`, as the whole
 // mesh's boundary faces (n_global_faces - n_global_internal_faces values, in
-// its order), on every rank (collective): gathered output of patch fields.
+// its order), on every rank (collective): the checkpoint's boundary arrays.
 std::vector<double> GatherBoundaryFaces(const DomainPart& part, const Mesh& mesh, const std::vector<double>& local);
+
+// The index in the whole mesh's patch `patch` of each face of that patch of
+// the rank's local mesh `mesh` (collective: the patch's first face in the
+// whole mesh is the least over the ranks). Serially 0, 1, 2, ...
+std::vector<int> WholePatchIndices(const DomainPart* part, const Mesh& mesh, int patch);
 
 // One vector per face of patch `patch` of the rank's local mesh, as the faces
 // of that patch in the whole mesh (in its order), on every rank (collective):

@@ -429,8 +429,10 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   if (auto propeller = LoadPropellerActuator(c, root)) c.actuators.push_back(std::move(propeller));
   if (auto rudder = LoadRudderActuator(c, root)) c.actuators.push_back(std::move(rudder));
   c.maneuver = LoadManeuverPilot(root, c, s.output.directory, overrides.maneuver);
-  // Only rank 0 writes the gathered output; the others release the whole mesh.
-  if (c.part && c.part->rank != 0) c.whole_mesh.reset();
+  // The whole mesh served the set-up; the output is written in pieces, so no
+  // rank keeps it (rank 0 keeps its quality report).
+  if (c.part && c.part->rank == 0) c.whole_mesh_quality = c.whole_mesh->Quality().Report();
+  c.whole_mesh.reset();
 #ifdef __GLIBC__
   // The decomposition's many small temporaries (a point list per face) stay
   // resident in malloc's heap once freed; hand the free pages back (on 2 ranks

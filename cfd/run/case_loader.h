@@ -81,12 +81,14 @@ CaseSettings ReadCaseSettings(const data::ConfigNode& root, const std::filesyste
 // Everything a case file defines, built and validated (the mesh is owned).
 // On MPI ranks (CaseOverrides::ranks) `mesh` is the rank's local mesh
 // (cfd/parallel/decompose.h), `part` the rank's part, and `whole_mesh` the
-// undecomposed mesh on rank 0, which writes the gathered output (the other
-// ranks release it after loading); serially both are null.
+// undecomposed mesh while the case is set up (the actuators find their cells
+// on it), released by every rank once loaded; `whole_mesh_quality` is its
+// quality report on rank 0. Serially they are null and empty.
 struct Case {
   CaseSettings settings;
   std::unique_ptr<Mesh> mesh;
   std::unique_ptr<Mesh> whole_mesh;
+  std::string whole_mesh_quality;
   std::shared_ptr<const DomainPart> part;
   // Rigid motion of the whole mesh (the `motion:` section): prescribed, or
   // of the free body; null without a motion.

@@ -26,7 +26,7 @@ std::vector<std::unique_ptr<Monitor>> MakeMonitors(const Case& c) {
   std::vector<std::unique_ptr<Monitor>> m;
   if (c.free_body) m.push_back(std::make_unique<FreeRunningCoupler>(c));
   if (c.maneuver) m.push_back(std::make_unique<ManeuverPilot>(c, *c.maneuver));
-  m.push_back(std::make_unique<FieldOutput>(s.output.directory, s.output.vtu_interval, c.whole_mesh.get()));
+  m.push_back(std::make_unique<FieldOutput>(s.output.directory, s.output.vtu_interval));
   m.push_back(std::make_unique<TurbulenceReport>());
   if (s.reference.speed > 0.0 && !c.force_patches.empty()) m.push_back(std::make_unique<ForceCoefficients>(c));
   if (s.resistance) m.push_back(std::make_unique<ResistanceMonitor>(c));
@@ -66,7 +66,7 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
                  part->n_global_cells, part->rank, part->n_owned, part->cells.size() - part->n_owned);
   }
   if (!part || part->rank == 0) {
-    spdlog::info("mesh quality:\n{}", (c.whole_mesh ? *c.whole_mesh : *c.mesh).Quality().Report());
+    spdlog::info("mesh quality:\n{}", part ? c.whole_mesh_quality : c.mesh->Quality().Report());
   }
   OnFirstRank(part, [&] {
     fs::create_directories(c.settings.output.directory);

@@ -16,32 +16,13 @@ namespace fs = std::filesystem;
 
 // --- FieldOutput -------------------------------------------------------------
 
-FieldOutput::FieldOutput(const fs::path& directory, int interval, const Mesh* whole_mesh)
-    : directory_(directory), interval_(interval), whole_mesh_(whole_mesh), pvd_(directory / "fields.pvd") {}
+FieldOutput::FieldOutput(const fs::path& directory, int interval) : directory_(directory), interval_(interval), pvd_(directory / "fields.pvd") {}
 
 void FieldOutput::AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) {
   if ((record.last && interval_ >= 0) || (interval_ > 0 && solver.step() % interval_ == 0)) Write(solver);
 }
 
 namespace {
-
-bool OnRanks(const PimpleSolver& solver) { return solver.part() && solver.part()->parallel(); }
-
-// Arrays of `components` values per cell (or per boundary face) of the local
-// mesh, as those of the whole mesh, component by component (collective).
-template <typename Gather>
-std::vector<double> Gathered(const std::vector<double>& local, int components, Gather gather) {
-  const std::size_t n = local.size() / components;
-  std::vector<double> out;
-  for (int k = 0; k < components; ++k) {
-    std::vector<double> one(n);
-    for (std::size_t i = 0; i < n; ++i) one[i] = local[i * components + k];
-    const std::vector<double> whole = gather(one);
-    if (out.empty()) out.resize(whole.size() * components);
-    for (std::size_t i = 0; i < whole.size(); ++i) out[i * components + k] = whole[i];
-  }
-  return out;
-}
 
 // The cell fields written: U, p and what the turbulence model adds.
 std::vector<VtuCellData> CellFields(const PimpleSolver& solver) {
@@ -79,24 +60,35 @@ std::vector<VtuCellData> BoundaryFields(const PimpleSolver& solver) {
   return out;
 }
 
+// The piece files of `stem` on ranks: stem_r<rank>.<extension>.
+std::vector<std::string> Pieces(const std::string& stem, const std::string& extension, int ranks) {
+  std::vector<std::string> out;
+  for (int r = 0; r < ranks; ++r) out.push_back(fmt::format("{}_r{}.{}", stem, r, extension));
+  return out;
+}
+
 }  // namespace
 
+// Serially one file per output; on ranks every rank writes its piece (its
+// owned cells, its faces of each patch) and rank 0 the index that ParaView
+// opens (.pvtu, .pvtp), so no rank holds the whole mesh or gathers a field.
 void FieldOutput::Write(const PimpleSolver& solver) {
-  // On ranks every field is gathered into the whole mesh's order and rank 0
-  // writes the files of the whole mesh, as a serial run would.
-  const bool ranks = OnRanks(solver);
-  std::vector<VtuCellData> cell_data = CellFields(solver);
-  std::vector<VtuCellData> boundary = BoundaryFields(solver);
-  if (ranks) {
-    const DomainPart& part = *solver.part();
-    for (VtuCellData& d : cell_data) {
-      d.values = Gathered(d.values, d.components, [&](const std::vector<double>& v) { return GatherCells(part, v); });
-    }
-    for (VtuCellData& d : boundary) {
-      d.values = Gathered(d.values, d.components,
-                          [&](const std::vector<double>& v) { return GatherBoundaryFaces(part, solver.mesh(), v); });
-    }
+  const Mesh& mesh = solver.mesh();
+  const DomainPart* part = solver.part() && solver.part()->parallel() ? solver.part() : nullptr;
+  const int ranks = part ? part->size : 1;
+  const std::vector<VtuCellData> cell_data = CellFields(solver);
+  const std::vector<VtuCellData> boundary = BoundaryFields(solver);
+  const std::string stem = fmt::format("fields_{:06d}", solver.step());
+  fs::path file = directory_ / (stem + ".vtu");
+  if (part) {
+    const std::vector<std::string> pieces = Pieces(stem, "vtu", ranks);
+    OnEveryRank(part, [&] { WriteVtu(directory_ / pieces[part->rank], mesh, cell_data, part->n_owned); });
+    file = directory_ / (stem + ".pvtu");
+    OnFirstRank(part, [&] { WritePvtu(file, pieces, cell_data); });
+  } else {
+    WriteVtu(file, mesh, cell_data);
   }
+  OnFirstRank(part, [&] { pvd_.Add(solver.time(), file); });
   // Surface files, each in a series of its own: the patches whose conditions
   // have their own unknowns (eta), and the turbulence model's walls, with
   // their wall shear stress and first-cell y+ (where the friction comes
@@ -106,32 +98,41 @@ void FieldOutput::Write(const PimpleSolver& solver) {
   if (t) {
     for (const WallPatchStats& w : t->WallStats()) walls.insert(w.patch);
   }
-  OnFirstRank(solver.part(), [&] {
-    KELVIN_CHECK(!ranks || whole_mesh_, "rank 0 of a run on ranks holds the whole mesh");
-    const Mesh& mesh = ranks ? *whole_mesh_ : solver.mesh();
-    const fs::path file = directory_ / fmt::format("fields_{:06d}.vtu", solver.step());
-    WriteVtu(file, mesh, cell_data);
-    pvd_.Add(solver.time(), file);
-    const int ni = mesh.n_internal_faces();
-    for (int k = 0; k < static_cast<int>(mesh.patches().size()); ++k) {
-      const Patch& patch = mesh.patches()[k];
-      // A condition's face fields (the free surface's eta) cover its whole patch on every rank.
-      auto fields = solver.p().bc(k).FaceFields();
-      const bool wall = walls.count(patch.name) > 0;
-      if (fields.empty() && !wall) continue;
-      std::vector<VtuCellData> data;
-      for (auto& [name, values] : fields) data.push_back({name, 1, std::move(values)});
-      for (std::size_t j = 0; j < (wall ? boundary.size() : 2); ++j) {
-        const VtuCellData& b = boundary[j];
-        const auto first = b.values.begin() + static_cast<long>(patch.start - ni) * b.components;
-        data.push_back({b.name, b.components, std::vector<double>(first, first + patch.size * b.components)});
-      }
-      const fs::path surface_file = directory_ / fmt::format("{}_{:06d}.vtp", patch.name, solver.step());
+  const int ni = mesh.n_internal_faces();
+  for (int k = 0; k < static_cast<int>(mesh.patches().size()); ++k) {
+    const Patch& patch = mesh.patches()[k];
+    if (patch.kind == PatchKind::kProcessor) continue;
+    // A condition's face fields (the free surface's eta) cover its whole patch on every rank.
+    auto fields = solver.p().bc(k).FaceFields();
+    const bool wall = walls.count(patch.name) > 0;
+    if (fields.empty() && !wall) continue;
+    const std::vector<int> index = WholePatchIndices(part, mesh, k);
+    std::vector<VtuCellData> data;
+    for (auto& [name, values] : fields) {
+      std::vector<double> mine(index.size());
+      for (std::size_t i = 0; i < index.size(); ++i) mine[i] = values[index[i]];
+      data.push_back({name, 1, std::move(mine)});
+    }
+    for (std::size_t j = 0; j < (wall ? boundary.size() : 2); ++j) {
+      const VtuCellData& b = boundary[j];
+      const auto first = b.values.begin() + static_cast<long>(patch.start - ni) * b.components;
+      data.push_back({b.name, b.components, std::vector<double>(first, first + patch.size * b.components)});
+    }
+    const std::string surface_stem = fmt::format("{}_{:06d}", patch.name, solver.step());
+    fs::path surface_file = directory_ / (surface_stem + ".vtp");
+    if (part) {
+      const std::vector<std::string> pieces = Pieces(surface_stem, "vtp", ranks);
+      OnEveryRank(part, [&] { WritePatchVtp(directory_ / pieces[part->rank], mesh, patch, data); });
+      surface_file = directory_ / (surface_stem + ".pvtp");
+      OnFirstRank(part, [&] { WritePvtp(surface_file, pieces, data); });
+    } else {
       WritePatchVtp(surface_file, mesh, patch, data);
+    }
+    OnFirstRank(part, [&] {
       auto [series, inserted] = surfaces_.try_emplace(patch.name, directory_ / (patch.name + ".pvd"));
       series->second.Add(solver.time(), surface_file);
-    }
-  });
+    });
+  }
 }
 
 // --- TurbulenceReport --------------------------------------------------------

@@ -24,16 +24,15 @@ namespace kelvin::cfd {
 
 class FieldOutput final : public Monitor {
  public:
-  // `whole_mesh`: on MPI ranks, the undecomposed mesh the fields are gathered
-  // to (rank 0's; null on the others, which write nothing).
-  FieldOutput(const std::filesystem::path& directory, int interval, const Mesh* whole_mesh = nullptr);
+  // On MPI ranks each rank writes its piece of every file and rank 0 the
+  // parallel index (.pvtu, .pvtp) the series lists.
+  FieldOutput(const std::filesystem::path& directory, int interval);
   void AfterStep(const PimpleSolver& solver, const StepRecord& record, History& history) override;
 
  private:
   void Write(const PimpleSolver& solver);
   std::filesystem::path directory_;
   int interval_;
-  const Mesh* whole_mesh_;
   PvdSeries pvd_;
   std::map<std::string, PvdSeries> surfaces_;
 };

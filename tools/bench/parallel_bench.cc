@@ -78,19 +78,21 @@ int Triad() {
   return 0;
 }
 
-// Resident memory now (MB), from /proc/self/status (VmRSS).
-double ResidentMb() {
+// A size from /proc/self/status (MB): "VmRSS:" resident now, "VmHWM:" its
+// peak so far.
+double StatusMb(const std::string& field) {
   std::ifstream in("/proc/self/status");
   std::string key;
   double kb = 0.0;
   while (in >> key) {
-    if (key == "VmRSS:") {
+    if (key == field) {
       in >> kb;
       break;
     }
   }
   return kb / 1024.0;
 }
+double ResidentMb() { return StatusMb("VmRSS:"); }
 
 // Heap in use now (MB): malloc's live bytes, what the process holds apart
 // from freed pages glibc keeps (which the resident size includes).
@@ -118,6 +120,7 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu)
   const double decompose_s = MPI_Wtime() - t0;
   const Mesh& mesh = size > 1 ? *local.mesh : *whole;
   const double live_mesh = LiveHeapMb();
+  const double peak_mesh = StatusMb("VmHWM:");  // the decomposition's high-water mark on ranks
   PhysicsOptions physics;
   physics.nu = nu;
   SchemeOptions schemes;
@@ -160,6 +163,7 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu)
   const std::vector<double> rss = Gathered(usage.ru_maxrss / 1024.0, MPI_COMM_WORLD);
   const std::vector<double> resident = Gathered(ResidentMb(), MPI_COMM_WORLD);
   const std::vector<double> live_mesh_mb = Gathered(live_mesh, MPI_COMM_WORLD);
+  const std::vector<double> peak_mesh_mb = Gathered(peak_mesh, MPI_COMM_WORLD);
   const std::vector<double> live_solver_mb = Gathered(live_solver, MPI_COMM_WORLD);
   const std::vector<double> live_end_mb = Gathered(LiveHeapMb(), MPI_COMM_WORLD);
   const std::vector<double> own = Gathered(owned, MPI_COMM_WORLD);
@@ -167,8 +171,8 @@ int Run(const std::string& poly_mesh, int steps, double dt, double nu, bool ilu)
   const std::vector<double> nbr = Gathered(static_cast<double>(neighbours.size()), MPI_COMM_WORLD);
   if (rank == 0) {
     std::printf("{\"ranks\": %d, \"cells\": %lld, \"decompose_s\": %.4f, \"step_s\": %s, \"pressure_iterations\": %.0f, \"momentum_iterations\": %.0f, "
-                "\"rss_mb\": %s, \"resident_mb\": %s, \"live_mesh_mb\": %s, \"live_solver_mb\": %s, \"live_end_mb\": %s, \"owned\": %s, \"ghosts\": %s, \"neighbours\": %s}\n",
-                size, n_cells, decompose_s, List(step_s).c_str(), p_iters, u_iters, List(rss).c_str(), List(resident).c_str(), List(live_mesh_mb).c_str(),
+                "\"rss_mb\": %s, \"resident_mb\": %s, \"live_mesh_mb\": %s, \"peak_mesh_mb\": %s, \"live_solver_mb\": %s, \"live_end_mb\": %s, \"owned\": %s, \"ghosts\": %s, \"neighbours\": %s}\n",
+                size, n_cells, decompose_s, List(step_s).c_str(), p_iters, u_iters, List(rss).c_str(), List(resident).c_str(), List(live_mesh_mb).c_str(), List(peak_mesh_mb).c_str(),
                 List(live_solver_mb).c_str(), List(live_end_mb).c_str(), List(own).c_str(),
                 List(ghost).c_str(), List(nbr).c_str());
   }

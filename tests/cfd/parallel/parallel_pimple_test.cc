@@ -113,7 +113,7 @@ TEST(Decompose, HaloCarriesTheOwnersValues) {
 // -(1 + skew) towards a higher-numbered neighbour and -(1 - skew) towards a
 // lower one, a diagonal dominating by 1 + (cell mod 3). The rows of ghost
 // cells are the identity (the solvers solve the owned rows only).
-CsrMatrix CellGraphMatrix(const Mesh& mesh, std::span<const long long> global, int n_rows, double skew) {
+CsrMatrix CellGraphMatrix(const Mesh& mesh, std::span<const int> global, int n_rows, double skew) {
   std::vector<Eigen::Triplet<double>> t;
   std::vector<double> diag(mesh.n_cells(), 0.0);
   for (int f = 0; f < mesh.n_internal_faces(); ++f) {
