@@ -3,6 +3,7 @@
 // and a k-omega SST channel with the linear solvers' tolerances at 1e-10,
 // whose lid force and wall friction must agree with the serial run's within
 // 1e-8 relative at every step.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <mpi.h>
@@ -303,6 +304,25 @@ TEST(ParallelPimple, StateOfAnotherMeshIsRefused) {
   } catch (const DataFileError& e) {
     EXPECT_NE(std::string(e.what()).find("has 100 values; the decomposed mesh has 576 cells"), std::string::npos)
         << e.what();
+  }
+}
+
+// Output in pieces: a write that fails on the last rank alone (a full disk
+// there) is raised on every rank with that rank's message, so all stop alike;
+// when every piece is written nothing is raised.
+TEST(Decompose, PieceWriteErrorOfOneRankIsRaisedOnEveryRank) {
+  const Mesh whole = Cavity();
+  const LocalDomain local = DecomposeOverWorld(whole);
+  const DomainPart& part = *local.part;
+  EXPECT_NO_THROW(OnEveryRank(&part, [] {}));
+  const std::string message = fmt::format("fields_000010_r{}.vtu: No space left on device", part.size - 1);
+  try {
+    OnEveryRank(&part, [&] {
+      if (part.rank == part.size - 1) throw DataFileError(message);
+    });
+    FAIL() << "expected a DataFileError on rank " << part.rank;
+  } catch (const DataFileError& e) {
+    EXPECT_EQ(std::string(e.what()), message);
   }
 }
 
