@@ -189,6 +189,19 @@ std::vector<double> VtkArray(const fs::path& file, const std::string& name) {
   return out;
 }
 
+// The x coordinates of the points of a VTK XML file written in ASCII.
+std::vector<double> VtkPointsX(const fs::path& file) {
+  const std::string text = FileText(file);
+  const std::size_t at = text.find("<Points>");
+  EXPECT_NE(at, std::string::npos) << file;
+  if (at == std::string::npos) return {};
+  const std::size_t begin = text.find('>', text.find("<DataArray", at)) + 1;
+  std::istringstream values(text.substr(begin, text.find("</DataArray>", begin) - begin));
+  std::vector<double> out;
+  for (double x = 0.0, y = 0.0, z = 0.0; values >> x >> y >> z;) out.push_back(x);
+  return out;
+}
+
 // The files a parallel index (.pvtu, .pvtp) names, beside it.
 std::vector<fs::path> VtkPieces(const fs::path& index) {
   const std::string text = FileText(index);
@@ -226,9 +239,10 @@ double ListMismatch(const std::vector<double>& a, const std::vector<double>& b) 
 }
 
 TEST(RunOnRanks, ShipLoadsMatchTheSerialRunAtEveryStep) {
-  std::vector<double> serial_p;
+  std::vector<double> serial_p, serial_x;
   const Loads serial = SerialRun(kCase, [&](const fs::path& out) {
     serial_p = VtkArray(out / "fields_000080.vtu", "p");
+    serial_x = VtkPointsX(out / "fields_000080.vtu");
     std::sort(serial_p.begin(), serial_p.end());
     return ReadLoads(out / "history.h5");
   });
@@ -254,6 +268,17 @@ TEST(RunOnRanks, ShipLoadsMatchTheSerialRunAtEveryStep) {
     EXPECT_EQ(VtkPieces(index).size(), static_cast<std::size_t>(WorldSize()));
     EXPECT_THAT(FileText(index), HasSubstr("Name=\"U\" NumberOfComponents=\"3\""));
     EXPECT_LT(ListMismatch(serial_p, SortedOverPieces(index, "p")), 1e-7);
+    // The pieces are the placed mesh, as the serial file is (the mesh has
+    // moved about 4.5 m from its body-fixed x in [-3, 2]): the same extent in x.
+    std::vector<double> x;
+    for (const fs::path& piece : VtkPieces(index)) {
+      const std::vector<double> px = VtkPointsX(piece);
+      x.insert(x.end(), px.begin(), px.end());
+    }
+    ASSERT_FALSE(x.empty());
+    ASSERT_FALSE(serial_x.empty());
+    EXPECT_NEAR(*std::min_element(x.begin(), x.end()), *std::min_element(serial_x.begin(), serial_x.end()), 1e-8);
+    EXPECT_NEAR(*std::max_element(x.begin(), x.end()), *std::max_element(serial_x.begin(), serial_x.end()), 1e-8);
     EXPECT_THAT(FileText(dir / "ranks/out/fields.pvd"), HasSubstr("file=\"fields_000080.pvtu\""));
   }
 }
