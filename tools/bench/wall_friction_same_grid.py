@@ -183,7 +183,8 @@ def run_kelvin(kelvin, work, grid, reuse):
         with open(os.path.join(work, "log.kelvin"), "w") as log:
             subprocess.run([kelvin, "run", case, "--no-progress"], stdout=log, stderr=subprocess.STDOUT, check=True,
                            env=env)
-    surface = sorted(f for f in os.listdir(out) if f.startswith("hull_") and f.endswith(".vtp"))[-1]
+    # The serial run's whole-patch files (a run on ranks writes pieces, hull_NNNNNN_r<rank>.vtp).
+    surface = sorted(f for f in os.listdir(out) if re.fullmatch(r"hull_\d+\.vtp", f))[-1]
     a = vtk_arrays(os.path.join(out, surface))
     points, conn, offsets = a["points"], a["connectivity"].astype(int), a["offsets"].astype(int)
     centres, areas = [], []
