@@ -29,6 +29,7 @@
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "tests/cfd/cfd_test_support.h"
+#include "tests/cfd/vtk_text.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
@@ -178,27 +179,17 @@ std::string FileText(const fs::path& file) {
 
 // The values of the ASCII DataArray `name` of a VTK XML file, in file order.
 std::vector<double> VtkArray(const fs::path& file, const std::string& name) {
-  const std::string text = FileText(file);
-  const std::size_t at = text.find("Name=\"" + name + "\"");
-  EXPECT_NE(at, std::string::npos) << name << " in " << file;
-  if (at == std::string::npos) return {};
-  const std::size_t begin = text.find('>', at) + 1;
-  std::istringstream values(text.substr(begin, text.find("</DataArray>", begin) - begin));
-  std::vector<double> out;
-  for (double v = 0.0; values >> v;) out.push_back(v);
+  std::vector<double> out = testing::VtkArray(FileText(file), name);
+  EXPECT_FALSE(out.empty()) << name << " in " << file;
   return out;
 }
 
 // The x coordinates of the points of a VTK XML file written in ASCII.
 std::vector<double> VtkPointsX(const fs::path& file) {
-  const std::string text = FileText(file);
-  const std::size_t at = text.find("<Points>");
-  EXPECT_NE(at, std::string::npos) << file;
-  if (at == std::string::npos) return {};
-  const std::size_t begin = text.find('>', text.find("<DataArray", at)) + 1;
-  std::istringstream values(text.substr(begin, text.find("</DataArray>", begin) - begin));
+  const std::vector<double> xyz = testing::VtkPoints(FileText(file));
+  EXPECT_FALSE(xyz.empty()) << file;
   std::vector<double> out;
-  for (double x = 0.0, y = 0.0, z = 0.0; values >> x >> y >> z;) out.push_back(x);
+  for (std::size_t i = 0; i < xyz.size(); i += 3) out.push_back(xyz[i]);
   return out;
 }
 

@@ -12,6 +12,7 @@
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "tests/cfd/cfd_test_support.h"
+#include "tests/cfd/vtk_text.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
@@ -40,17 +41,6 @@ boundary:
   ymax: {U: {type: noSlip}, p: {type: zeroGradient}}
 output: {directory: out, vtu_interval: 0, checkpoint_interval: 5, forces: [ymin]}
 )";
-
-// The values of the ASCII DataArray `name` of a VTK XML file.
-std::vector<double> VtpArray(const std::string& xml, const std::string& name) {
-  const std::size_t at = xml.find("Name=\"" + name + "\"");
-  if (at == std::string::npos) return {};
-  const std::size_t begin = xml.find('>', at) + 1, end = xml.find("</DataArray>", begin);
-  std::istringstream in(xml.substr(begin, end - begin));
-  std::vector<double> v;
-  for (double x; in >> x;) v.push_back(x);
-  return v;
-}
 
 std::string CaseText(double end) {
   std::string s = kCase;
@@ -112,8 +102,8 @@ TEST(TurbulentCase, WritesTurbulenceOutputsAndStaysPositive) {
   // the viscous force of the history (the default rho, 1000 kg/m^3).
   std::stringstream vtp;
   vtp << std::ifstream(tmp / "out" / "ymin_000010.vtp").rdbuf();
-  const std::vector<double> tau = VtpArray(vtp.str(), "wallShearStress");
-  const std::vector<double> y_plus = VtpArray(vtp.str(), "yPlus");
+  const std::vector<double> tau = testing::VtkArray(vtp.str(), "wallShearStress");
+  const std::vector<double> y_plus = testing::VtkArray(vtp.str(), "yPlus");
   ASSERT_EQ(tau.size(), 3u * 24u);
   ASSERT_EQ(y_plus.size(), 24u);
   double fx = 0.0;
