@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "cfd/io/vtu_writer.h"
 #include "data/schema/atomic_file.h"
 #include "data/schema/errors.h"
 
@@ -123,82 +124,14 @@ std::vector<double> FaceNonOrthogonality(const Mesh& mesh) {
 }
 
 void WriteVtu(const Mesh& mesh, const fs::path& path) {
-  const int nc = mesh.n_cells();
-  // Polyhedral cells: unique points, and faces oriented outwards.
-  std::vector<std::int64_t> connectivity, offsets, faces, face_offsets;
-  std::vector<std::uint8_t> types(nc, 42);  // VTK_POLYHEDRON
-  const auto off = mesh.cell_face_offsets();
-  const auto cf = mesh.cell_faces();
-  std::vector<int> cell_points;
-  for (int c = 0; c < nc; ++c) {
-    cell_points.clear();
-    faces.push_back(off[c + 1] - off[c]);
-    for (int m = off[c]; m < off[c + 1]; ++m) {
-      const int f = cf[m];
-      const auto& pts = mesh.faces()[f];
-      faces.push_back(static_cast<std::int64_t>(pts.size()));
-      if (mesh.owner()[f] == c) {
-        for (int p : pts) faces.push_back(p);
-      } else {
-        for (auto it = pts.rbegin(); it != pts.rend(); ++it) faces.push_back(*it);
-      }
-      cell_points.insert(cell_points.end(), pts.begin(), pts.end());
-    }
-    std::sort(cell_points.begin(), cell_points.end());
-    cell_points.erase(std::unique(cell_points.begin(), cell_points.end()), cell_points.end());
-    connectivity.insert(connectivity.end(), cell_points.begin(), cell_points.end());
-    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
-    face_offsets.push_back(static_cast<std::int64_t>(faces.size()));
-  }
-  std::vector<double> coords;
-  coords.reserve(3 * mesh.n_points());
-  for (const Vector3& p : mesh.points()) coords.insert(coords.end(), {p.x(), p.y(), p.z()});
   const std::vector<double> angle = FaceNonOrthogonality(mesh);
-  std::vector<double> cell_angle(nc, 0.0);
+  std::vector<double> cell_angle(mesh.n_cells(), 0.0);
   for (int f = 0; f < mesh.n_internal_faces(); ++f) {
     cell_angle[mesh.owner()[f]] = std::max(cell_angle[mesh.owner()[f]], angle[f]);
     cell_angle[mesh.neighbour()[f]] = std::max(cell_angle[mesh.neighbour()[f]], angle[f]);
   }
   const std::vector<double> volume(mesh.cell_volumes().begin(), mesh.cell_volumes().end());
-
-  std::string xml;
-  std::string blob;
-  std::size_t offset = 0;
-  auto array = [&](const char* type, const char* name, int components, const void* data,
-                   std::size_t bytes) {
-    xml += fmt::format(
-        "        <DataArray type=\"{}\" Name=\"{}\"{} format=\"appended\" offset=\"{}\"/>\n", type,
-        name, components > 1 ? fmt::format(" NumberOfComponents=\"{}\"", components) : "", offset);
-    const std::uint64_t n = bytes;
-    blob.append(reinterpret_cast<const char*>(&n), sizeof n);
-    blob.append(static_cast<const char*>(data), bytes);
-    offset += sizeof n + bytes;
-  };
-  xml +=
-      "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n"
-      "  <UnstructuredGrid>\n";
-  xml +=
-      fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", mesh.n_points(), nc);
-  xml += "      <Points>\n";
-  array("Float64", "Points", 3, coords.data(), coords.size() * sizeof(double));
-  xml += "      </Points>\n      <Cells>\n";
-  array("Int64", "connectivity", 1, connectivity.data(), connectivity.size() * 8);
-  array("Int64", "offsets", 1, offsets.data(), offsets.size() * 8);
-  array("UInt8", "types", 1, types.data(), types.size());
-  array("Int64", "faces", 1, faces.data(), faces.size() * 8);
-  array("Int64", "faceoffsets", 1, face_offsets.data(), face_offsets.size() * 8);
-  xml += "      </Cells>\n      <CellData Scalars=\"volume\">\n";
-  array("Float64", "volume", 1, volume.data(), volume.size() * sizeof(double));
-  array("Float64", "non_orthogonality", 1, cell_angle.data(), cell_angle.size() * sizeof(double));
-  xml +=
-      "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n "
-      "  _";
-  std::string content = std::move(xml);
-  content += blob;
-  content += "\n  </AppendedData>\n</VTKFile>\n";
-  data::WriteFileAtomically(path, content);
+  WriteVtu(path, mesh, {{"volume", 1, volume}, {"non_orthogonality", 1, std::move(cell_angle)}});
 }
 
 }  // namespace kelvin::cfd

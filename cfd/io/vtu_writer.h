@@ -1,5 +1,6 @@
 // VTK XML unstructured-grid output (.vtu, every cell as a VTK polyhedron),
-// patch surfaces as polygon data (.vtp), their parallel index files (.pvtu,
+// patch surfaces as polygon data (.vtp), both with their arrays in raw
+// binary appended data (exact doubles), their parallel index files (.pvtu,
 // .pvtp: one piece per MPI rank), and the .pvd collection that ties the time
 // steps together for ParaView.
 #pragma once

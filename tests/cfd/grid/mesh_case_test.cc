@@ -17,6 +17,7 @@
 #include "cfd/mesh/poly_mesh_reader.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
+#include "tests/cfd/vtk_read.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
@@ -173,21 +174,8 @@ void CheckVtu(const std::filesystem::path& path, const Mesh& mesh) {
   const auto data = text.find("<AppendedData encoding=\"raw\">");
   ASSERT_NE(data, std::string::npos);
   const std::size_t base = text.find('_', data) + 1;
-  auto array = [&](const std::string& name) {
-    const auto tag = text.find("Name=\"" + name + "\"");
-    EXPECT_NE(tag, std::string::npos) << name;
-    const auto at = text.find("offset=\"", tag) + 8;
-    const std::size_t offset = std::stoull(text.substr(at));
-    std::uint64_t bytes = 0;
-    std::memcpy(&bytes, text.data() + base + offset, sizeof bytes);
-    return std::string(text.data() + base + offset + sizeof bytes, bytes);
-  };
-  auto int64s = [&](const std::string& name) {
-    const std::string raw = array(name);
-    std::vector<std::int64_t> v(raw.size() / 8);
-    std::memcpy(v.data(), raw.data(), raw.size());
-    return v;
-  };
+  auto array = [&](const std::string& name) { return testing::VtkRaw(text, name); };
+  auto int64s = [&](const std::string& name) { return testing::VtkInt64s(text, name); };
   const std::string points = array("Points");
   ASSERT_EQ(points.size(), 24u * mesh.n_points());
   double p0[3];

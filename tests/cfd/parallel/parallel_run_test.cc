@@ -29,7 +29,7 @@
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "tests/cfd/cfd_test_support.h"
-#include "tests/cfd/vtk_text.h"
+#include "tests/cfd/vtk_read.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
@@ -177,16 +177,16 @@ std::string FileText(const fs::path& file) {
   return text.str();
 }
 
-// The values of the ASCII DataArray `name` of a VTK XML file, in file order.
+// The values of the Float64 array `name` of a VTK XML file, in file order.
 std::vector<double> VtkArray(const fs::path& file, const std::string& name) {
-  std::vector<double> out = testing::VtkArray(FileText(file), name);
+  std::vector<double> out = testing::VtkDoubles(FileText(file), name);
   EXPECT_FALSE(out.empty()) << name << " in " << file;
   return out;
 }
 
-// The x coordinates of the points of a VTK XML file written in ASCII.
+// The x coordinates of the points of a VTK XML file.
 std::vector<double> VtkPointsX(const fs::path& file) {
-  const std::vector<double> xyz = testing::VtkPoints(FileText(file));
+  const std::vector<double> xyz = testing::VtkDoubles(FileText(file), "Points");
   EXPECT_FALSE(xyz.empty()) << file;
   std::vector<double> out;
   for (std::size_t i = 0; i < xyz.size(); i += 3) out.push_back(xyz[i]);

@@ -12,7 +12,7 @@
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "tests/cfd/cfd_test_support.h"
-#include "tests/cfd/vtk_text.h"
+#include "tests/cfd/vtk_read.h"
 #include "tests/test_utilities/test_utilities.h"
 
 namespace kelvin::cfd {
@@ -102,8 +102,8 @@ TEST(TurbulentCase, WritesTurbulenceOutputsAndStaysPositive) {
   // the viscous force of the history (the default rho, 1000 kg/m^3).
   std::stringstream vtp;
   vtp << std::ifstream(tmp / "out" / "ymin_000010.vtp").rdbuf();
-  const std::vector<double> tau = testing::VtkArray(vtp.str(), "wallShearStress");
-  const std::vector<double> y_plus = testing::VtkArray(vtp.str(), "yPlus");
+  const std::vector<double> tau = testing::VtkDoubles(vtp.str(), "wallShearStress");
+  const std::vector<double> y_plus = testing::VtkDoubles(vtp.str(), "yPlus");
   ASSERT_EQ(tau.size(), 3u * 24u);
   ASSERT_EQ(y_plus.size(), 24u);
   double fx = 0.0;
