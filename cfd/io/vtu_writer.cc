@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
+#include <utility>
 #include <numeric>
 #include <span>
 
@@ -16,9 +18,12 @@ namespace {
 
 // A VTK XML file with its arrays in one raw appended block, each a UInt64
 // byte count and the little-endian values: exact doubles, and about a third
-// of the size (and of the memory while written) of the same file in ASCII.
+// of the size of the same file in ASCII. Each array is declared with its
+// size and a function that appends its bytes, so the file's text is the only
+// copy of the data built while it is written.
 class AppendedFile {
  public:
+  using Fill = std::function<void(std::string&)>;
   // Opens the file's XML: `kind` ("UnstructuredGrid" or "PolyData") and the
   // Piece's attributes.
   AppendedFile(const std::string& kind, const std::string& piece) : kind_(kind) {
@@ -28,35 +33,51 @@ class AppendedFile {
         kind, piece);
   }
   void Tag(const std::string& text) { xml_ += text; }
-  template <typename T>
-  void Array(const char* type, const std::string& name, int components, const std::vector<T>& values) {
+  void Array(const char* type, const std::string& name, int components, std::uint64_t bytes, Fill fill) {
     xml_ += fmt::format("<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" "
                         "offset=\"{}\"/>\n",
-                        type, name, components, blob_.size());
-    const std::uint64_t bytes = values.size() * sizeof(T);
-    blob_.append(reinterpret_cast<const char*>(&bytes), sizeof bytes);
-    blob_.append(reinterpret_cast<const char*>(values.data()), bytes);
+                        type, name, components, appended_);
+    appended_ += sizeof bytes + bytes;
+    arrays_.push_back({bytes, std::move(fill)});
   }
   void Write(const std::filesystem::path& path) {
     xml_ += fmt::format("</Piece>\n</{}>\n<AppendedData encoding=\"raw\">\n_", kind_);
-    xml_ += blob_;
-    std::string().swap(blob_);
-    xml_ += "\n</AppendedData>\n</VTKFile>\n";
-    data::WriteFileAtomically(path, xml_);
+    const std::string tail = "\n</AppendedData>\n</VTKFile>\n";
+    std::string out = std::move(xml_);
+    out.reserve(out.size() + appended_ + tail.size());
+    for (const auto& [bytes, fill] : arrays_) {
+      Raw(out, &bytes, 1);
+      const std::size_t before = out.size();
+      fill(out);
+      KELVIN_CHECK(out.size() - before == bytes, "an array fills the bytes it declared");
+    }
+    out += tail;
+    data::WriteFileAtomically(path, out);
+  }
+  template <typename T>
+  static void Raw(std::string& out, const T* values, std::size_t n) {
+    out.append(reinterpret_cast<const char*>(values), n * sizeof(T));
   }
 
  private:
-  std::string kind_, xml_, blob_;
+  std::string kind_, xml_;
+  std::uint64_t appended_ = 0;
+  std::vector<std::pair<std::uint64_t, Fill>> arrays_;
 };
 
-std::vector<double> Coordinates(const Mesh& mesh, std::span<const int> points) {
-  std::vector<double> out;
-  out.reserve(3 * points.size());
-  for (int p : points) {
-    const Vector3& x = mesh.points()[p];
-    out.insert(out.end(), {x.x(), x.y(), x.z()});
-  }
-  return out;
+// The coordinates of `points` (x, y, z each), as the file's Points.
+void Points(AppendedFile& file, const Mesh& mesh, std::span<const int> points) {
+  file.Tag("<Points>\n");
+  file.Array("Float64", "Points", 3, 24 * points.size(), [&mesh, points](std::string& out) {
+    for (int p : points) AppendedFile::Raw(out, mesh.points()[p].data(), 3);
+  });
+  file.Tag("</Points>\n");
+}
+
+template <typename T>
+void Values(AppendedFile& file, const char* type, const char* name, const std::vector<T>& values) {
+  file.Array(type, name, 1, values.size() * sizeof(T),
+             [&values](std::string& out) { AppendedFile::Raw(out, values.data(), values.size()); });
 }
 
 // The first n * components values of each array, as cell (or face) data.
@@ -65,9 +86,23 @@ void CellData(AppendedFile& file, const std::vector<VtuCellData>& data, int n) {
   for (const VtuCellData& d : data) {
     const auto count = static_cast<std::size_t>(n) * d.components;
     KELVIN_CHECK(d.values.size() >= count, "a value per cell or face written");
-    file.Array("Float64", d.name, d.components, std::vector<double>(d.values.begin(), d.values.begin() + count));
+    file.Array("Float64", d.name, d.components, count * sizeof(double),
+               [&d, count](std::string& out) { AppendedFile::Raw(out, d.values.data(), count); });
   }
   file.Tag("</CellData>\n");
+}
+
+// The distinct points of cell c, ascending.
+void CellPoints(const Mesh& mesh, int c, std::vector<int>& pts) {
+  const auto off = mesh.cell_face_offsets();
+  const auto cf = mesh.cell_faces();
+  pts.clear();
+  for (int k = off[c]; k < off[c + 1]; ++k) {
+    const std::span<const int> fp = mesh.face(cf[k]);
+    pts.insert(pts.end(), fp.begin(), fp.end());
+  }
+  std::sort(pts.begin(), pts.end());
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
 }
 
 }  // namespace
@@ -76,41 +111,55 @@ void WriteVtu(const std::filesystem::path& path, const Mesh& mesh, const std::ve
               int n_cells) {
   const int nc = n_cells < 0 ? mesh.n_cells() : n_cells;
   KELVIN_CHECK(nc <= mesh.n_cells(), "a piece holds cells of its mesh");
-  // Polyhedral cells: the distinct points of each cell, and per cell
-  // [n_faces, (n_points, ids...)...] with the faces oriented outwards.
-  std::vector<std::int64_t> connectivity, offsets, faces, face_offsets;
-  const std::vector<std::uint8_t> types(static_cast<std::size_t>(nc), 42);  // VTK_POLYHEDRON
+  // Polyhedral cells: the distinct points of each cell (connectivity), and
+  // per cell [n_faces, (n_points, ids...)...] with the faces oriented
+  // outwards (faces). Their ends are counted first; the lists themselves are
+  // written straight into the file.
   const auto off = mesh.cell_face_offsets();
   const auto cf = mesh.cell_faces();
+  std::vector<std::int64_t> offsets(nc), face_offsets(nc);
   std::vector<int> pts;
+  std::int64_t n_connectivity = 0, n_faces = 0;
   for (int c = 0; c < nc; ++c) {
-    pts.clear();
-    faces.push_back(off[c + 1] - off[c]);
-    for (int k = off[c]; k < off[c + 1]; ++k) {
-      const int f = cf[k];
-      const std::span<const int> fp = mesh.face(f);
-      faces.push_back(static_cast<std::int64_t>(fp.size()));
-      const bool flip = mesh.owner()[f] != c;
-      for (std::size_t i = 0; i < fp.size(); ++i) faces.push_back(flip ? fp[fp.size() - 1 - i] : fp[i]);
-      pts.insert(pts.end(), fp.begin(), fp.end());
-    }
-    std::sort(pts.begin(), pts.end());
-    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-    connectivity.insert(connectivity.end(), pts.begin(), pts.end());
-    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
-    face_offsets.push_back(static_cast<std::int64_t>(faces.size()));
+    CellPoints(mesh, c, pts);
+    n_connectivity += static_cast<std::int64_t>(pts.size());
+    offsets[c] = n_connectivity;
+    n_faces += 1;
+    for (int k = off[c]; k < off[c + 1]; ++k) n_faces += 1 + static_cast<std::int64_t>(mesh.face(cf[k]).size());
+    face_offsets[c] = n_faces;
   }
   std::vector<int> all(mesh.n_points());
   std::iota(all.begin(), all.end(), 0);
+  const std::vector<std::uint8_t> types(static_cast<std::size_t>(nc), 42);  // VTK_POLYHEDRON
   AppendedFile file("UnstructuredGrid", fmt::format("NumberOfPoints=\"{}\" NumberOfCells=\"{}\"", mesh.n_points(), nc));
-  file.Tag("<Points>\n");
-  file.Array("Float64", "Points", 3, Coordinates(mesh, all));
-  file.Tag("</Points>\n<Cells>\n");
-  file.Array("Int64", "connectivity", 1, connectivity);
-  file.Array("Int64", "offsets", 1, offsets);
-  file.Array("UInt8", "types", 1, types);
-  file.Array("Int64", "faces", 1, faces);
-  file.Array("Int64", "faceoffsets", 1, face_offsets);
+  Points(file, mesh, all);
+  file.Tag("<Cells>\n");
+  file.Array("Int64", "connectivity", 1, 8 * n_connectivity, [&](std::string& out) {
+    std::vector<int> cell;
+    for (int c = 0; c < nc; ++c) {
+      CellPoints(mesh, c, cell);
+      for (int p : cell) {
+        const std::int64_t v = p;
+        AppendedFile::Raw(out, &v, 1);
+      }
+    }
+  });
+  Values(file, "Int64", "offsets", offsets);
+  Values(file, "UInt8", "types", types);
+  file.Array("Int64", "faces", 1, 8 * n_faces, [&](std::string& out) {
+    auto put = [&out](std::int64_t v) { AppendedFile::Raw(out, &v, 1); };
+    for (int c = 0; c < nc; ++c) {
+      put(off[c + 1] - off[c]);
+      for (int k = off[c]; k < off[c + 1]; ++k) {
+        const int f = cf[k];
+        const std::span<const int> fp = mesh.face(f);
+        put(static_cast<std::int64_t>(fp.size()));
+        const bool flip = mesh.owner()[f] != c;
+        for (std::size_t i = 0; i < fp.size(); ++i) put(flip ? fp[fp.size() - 1 - i] : fp[i]);
+      }
+    }
+  });
+  Values(file, "Int64", "faceoffsets", face_offsets);
   file.Tag("</Cells>\n");
   CellData(file, data, nc);
   file.Write(path);
@@ -138,11 +187,10 @@ void WritePatchVtp(const std::filesystem::path& path, const Mesh& mesh, const Pa
   AppendedFile file("PolyData", fmt::format("NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
                                             "NumberOfStrips=\"0\" NumberOfPolys=\"{}\"",
                                             used.size(), patch.size));
-  file.Tag("<Points>\n");
-  file.Array("Float64", "Points", 3, Coordinates(mesh, used));
-  file.Tag("</Points>\n<Polys>\n");
-  file.Array("Int64", "connectivity", 1, connectivity);
-  file.Array("Int64", "offsets", 1, offsets);
+  Points(file, mesh, used);
+  file.Tag("<Polys>\n");
+  Values(file, "Int64", "connectivity", connectivity);
+  Values(file, "Int64", "offsets", offsets);
   file.Tag("</Polys>\n");
   CellData(file, face_data, patch.size);
   file.Write(path);

@@ -412,25 +412,17 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
     physics.source = [g](const Vector3&, double) { return g; };
   }
   Fields fields = LoadBoundary(root["boundary"], mesh, c.motion.get(), {c.whole_mesh.get(), c.part});
-  ValidateAt(root["solution"], [&] {
-    c.solver = std::make_unique<PimpleSolver>(mesh, physics, LoadSchemes(root), LoadPimple(root), std::move(fields.U),
-                                              std::move(fields.p), c.part);
-  });
-  if (c.motion) c.motion->Attach(*c.solver);
-  if (root.Has("turbulence")) LoadTurbulence(root["turbulence"], mesh, s.nu, *c.solver, c.part);
-  c.free_surface = FindFreeSurface(*c.solver);
-  if (s.time.steady && s.time.steady->window_is_flow_through) {
-    s.time.steady->criterion.window = FlowThroughTime(whole, s.reference);
-  }
-  ValidateAt(t, [&] { s.time.Validate(); });
-  CheckRunSections(root, c);
   // The propeller and the rudder find their cells on the body-fixed mesh (not
-  // placed yet); the rudder samples the flow behind the propeller.
-  if (auto propeller = LoadPropellerActuator(c, root)) c.actuators.push_back(std::move(propeller));
-  if (auto rudder = LoadRudderActuator(c, root)) c.actuators.push_back(std::move(rudder));
-  c.maneuver = LoadManeuverPilot(root, c, s.output.directory, overrides.maneuver);
-  // The whole mesh served the set-up; the output is written in pieces, so no
-  // rank keeps it (rank 0 keeps its quality report).
+  // placed yet), on ranks the whole one.
+  std::vector<std::unique_ptr<BodyActuator>> actuators;
+  if (auto propeller = LoadPropellerActuator(c, root)) actuators.push_back(std::move(propeller));
+  if (auto rudder = LoadRudderActuator(c, root)) actuators.push_back(std::move(rudder));
+  const bool flow_through_window = s.time.steady && s.time.steady->window_is_flow_through;
+  const double flow_through = flow_through_window ? FlowThroughTime(whole, s.reference) : 0.0;
+  // The whole mesh has served the set-up: it goes before the solver's fields
+  // are allocated (its size would otherwise add to every rank's peak), and
+  // the output is written in pieces, so no rank keeps it (rank 0 keeps its
+  // quality report).
   if (c.part && c.part->rank == 0) c.whole_mesh_quality = c.whole_mesh->Quality().Report();
   c.whole_mesh.reset();
 #ifdef __GLIBC__
@@ -439,6 +431,21 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   // of a 373k-cell cube: 75 B per cell of peak memory, BENCHMARKS.md).
   if (c.part) malloc_trim(0);
 #endif
+  ValidateAt(root["solution"], [&] {
+    c.solver = std::make_unique<PimpleSolver>(mesh, physics, LoadSchemes(root), LoadPimple(root), std::move(fields.U),
+                                              std::move(fields.p), c.part);
+  });
+  if (c.motion) c.motion->Attach(*c.solver);
+  if (root.Has("turbulence")) LoadTurbulence(root["turbulence"], mesh, s.nu, *c.solver, c.part);
+  c.free_surface = FindFreeSurface(*c.solver);
+  if (flow_through_window) {
+    s.time.steady->criterion.window = flow_through;
+  }
+  ValidateAt(t, [&] { s.time.Validate(); });
+  CheckRunSections(root, c);
+  // The rudder samples the flow behind the propeller (the propeller first).
+  c.actuators = std::move(actuators);
+  c.maneuver = LoadManeuverPilot(root, c, s.output.directory, overrides.maneuver);
   return c;
 }
 
