@@ -36,7 +36,7 @@ std::vector<T> LocalCells(const DomainPart& part, std::span<const T> global) {
 }
 
 // The values of the owned cells of every rank, in the order of the whole
-// mesh, on every rank (collective; for checks and gathered output).
+// mesh, on every rank (collective; for checks against a serial run).
 std::vector<double> GatherCells(const DomainPart& part, std::span<const double> local);
 
 }  // namespace kelvin::cfd

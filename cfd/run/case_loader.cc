@@ -331,7 +331,7 @@ void CheckRunSections(const ConfigNode& root, const Case& c) {
 }
 
 // Cuts the loaded whole mesh over the ranks of `comm` (more than one): the
-// case then holds the rank's local mesh and keeps the whole one for output.
+// case then holds the rank's local mesh, and the whole one until it is set up.
 void DecomposeCase(Case& c, MPI_Comm comm) {
   int size = 1;
   MPI_Comm_size(comm, &size);
