@@ -155,16 +155,20 @@ def foam_patch_values(path, patch, components):
 
 
 def vtk_arrays(path):
-    """Named (and unnamed: points) ASCII DataArrays of a VTK XML file."""
-    text = open(path).read()
+    """The arrays of a VTK XML file kelvin writes (raw appended data: a UInt64 byte count, then the
+    little-endian values), by name; the points as "points"."""
+    data = open(path, "rb").read()
+    start = data.index(b"<AppendedData")
+    base = data.index(b"_", start) + 1
+    types = {"Float64": "<f8", "Int64": "<i8", "UInt8": "u1"}
     arrays = {}
-    for m in re.finditer(r"<DataArray([^>]*)>(.*?)</DataArray>", text, re.S):
-        name = re.search(r'Name="([^"]*)"', m.group(1))
-        comps = re.search(r'NumberOfComponents="(\d+)"', m.group(1))
-        a = np.array(m.group(2).split(), dtype=float)
-        if comps and int(comps.group(1)) > 1:
-            a = a.reshape(-1, int(comps.group(1)))
-        arrays[name.group(1) if name else "points"] = a
+    for m in re.finditer(rb"<DataArray([^>]*)/>", data[:start]):
+        attrs = dict(re.findall(r'(\w+)="([^"]*)"', m.group(1).decode()))
+        offset = base + int(attrs["offset"])
+        count = int(np.frombuffer(data, "<u8", 1, offset)[0])
+        a = np.frombuffer(data, types[attrs["type"]], count // np.dtype(types[attrs["type"]]).itemsize, offset + 8)
+        comps = int(attrs.get("NumberOfComponents", "1"))
+        arrays["points" if attrs["Name"] == "Points" else attrs["Name"]] = a.reshape(-1, comps) if comps > 1 else a
     return arrays
 
 
