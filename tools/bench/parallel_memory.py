@@ -19,6 +19,7 @@ Usage: tools/bench/parallel_memory.py --bench build/ci/tools/bench/parallel_benc
 """
 import argparse
 import datetime
+import json
 import os
 import subprocess
 import sys
@@ -26,7 +27,23 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pimple_vs_openfoam import foam_case, foam, write_or_print  # noqa: E402
-from parallel_speedup import kelvin, MPI  # noqa: E402
+
+MPI = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-np"]
+
+
+def kelvin(bench, poly_mesh, ranks, steps, dt, nu):
+    """One parallel_bench run (the triad without a mesh), serially or on `ranks` ranks: its JSON report."""
+    cmd = [bench, poly_mesh, "--steps", str(steps), "--dt", str(dt), "--nu", str(nu)] if poly_mesh else [bench, "--triad"]
+    env = dict(os.environ)
+    if ranks == 1:
+        env["OMPI_MCA_ess_singleton_isolated"] = "1"
+    else:
+        cmd = MPI + [str(ranks)] + cmd
+    out = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if out.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed:\n{out.stderr[-3000:]}")
+    return json.loads([line for line in out.stdout.splitlines() if line.startswith("{")][-1])
+
 
 NAME = "parallel_memory"
 STAGES = [("live_mesh_mb", "the mesh (a rank's local mesh, its ghost cells and `DomainPart` maps)"),
@@ -95,6 +112,21 @@ def table(runs):
     return rows
 
 
+def measure(bench, program, work, small, large, steps, nu=0.01):
+    """parallel_bench runs (runs[ranks] = [small, large]) and, with `program`, the peak MB of each process
+    of `kelvin run` (whole[ranks] = [small, large]), serially and on 2 ranks."""
+    runs = {1: [], 2: []}
+    whole = {1: [], 2: []}
+    for n in (small, large):
+        dt = 0.4 / n
+        mesh = cube(work, n, steps, dt, nu)
+        for ranks in (1, 2):
+            runs[ranks].append(kelvin(bench, mesh, ranks, steps, dt, nu))
+            if program:
+                whole[ranks].append(kelvin_run(program, work, mesh, ranks, steps, dt, nu))
+    return runs, whole
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--bench", required=True, help="the parallel_bench program")
@@ -107,17 +139,8 @@ def main():
     args = ap.parse_args()
     if args.large <= args.small:
         sys.exit(f"--large {args.large}: expected more cells per side than --small {args.small}")
-    nu = 0.01
     work = args.work or tempfile.mkdtemp(prefix="kelvin_parallel_memory_")
-    runs = {1: [], 2: []}
-    whole = {1: [], 2: []}  # kelvin run: peak MB of each process
-    for n in (args.small, args.large):
-        dt = 0.4 / n
-        mesh = cube(work, n, args.steps, dt, nu)
-        for ranks in (1, 2):
-            runs[ranks].append(kelvin(args.bench, mesh, ranks, args.steps, dt, nu))
-            if args.kelvin:
-                whole[ranks].append(kelvin_run(args.kelvin, work, mesh, ranks, args.steps, dt, nu))
+    runs, whole = measure(args.bench, args.kelvin, work, args.small, args.large, args.steps)
     rows = table(runs)
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     small, large = runs[1][0]["cells"], runs[1][1]["cells"]

@@ -16,34 +16,18 @@ Usage: tools/bench/parallel_speedup.py --bench build/bench/tools/bench/parallel_
 """
 import argparse
 import datetime
-import json
 import os
 import re
 import statistics
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pimple_vs_openfoam import foam_case, foam, write, write_or_print  # noqa: E402
+import parallel_memory  # noqa: E402
+from parallel_memory import kelvin  # noqa: E402
 
 NAME = "parallel_speedup"
-MPI = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-np"]
-
-
-def kelvin(bench, poly_mesh, ranks, steps, dt, nu):
-    cmd = [bench, poly_mesh, "--steps", str(steps), "--dt", str(dt), "--nu", str(nu)] if poly_mesh else [bench, "--triad"]
-    env = dict(os.environ)
-    if ranks == 1:
-        env["OMPI_MCA_ess_singleton_isolated"] = "1"
-    else:
-        cmd = MPI + [str(ranks)] + cmd
-    out = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    if out.returncode != 0:
-        sys.exit(f"{' '.join(cmd)} failed:\n{out.stderr[-3000:]}")
-    return json.loads([line for line in out.stdout.splitlines() if line.startswith("{")][-1])
-
-
 def foam_step_times(log):
     """Wall seconds of each time step from pimpleFoam's ClockTime lines."""
     clocks = [float(x) for x in re.findall(r"ClockTime = ([0-9.eE+-]+) s", log)]
@@ -83,6 +67,8 @@ def main():
     ap.add_argument("--repeat", type=int, default=3, help="alternating serial / 2-rank runs of kelvin (medians)")
     ap.add_argument("--work", default=None)
     ap.add_argument("--write", help="BENCHMARKS.md to update (default: print the section)")
+    ap.add_argument("--memory-cells", type=int, nargs=2, default=[40, 72], metavar=("SMALL", "LARGE"),
+                    help="cells per side of the two cubes of the marginal memory (parallel_memory.py; default 40 72)")
     args = ap.parse_args()
     n, steps, nu = args.cells, args.steps, 0.01
     dt = 0.4 / n
@@ -96,6 +82,9 @@ def main():
     for _ in range(args.repeat):
         runs1.append(kelvin(args.bench, poly_mesh, 1, steps, dt, nu))
         runs2.append(kelvin(args.bench, poly_mesh, 2, steps, dt, nu))
+    # Memory per cell in the same invocation: the marginal memory between two cube sizes (parallel_memory.py).
+    mem_runs, _ = parallel_memory.measure(args.bench, None, work, *args.memory_cells, 2)
+    mem_rows = parallel_memory.table(mem_runs)
     k1, k2 = runs1[-1], runs2[-1]
     cells = k1["cells"]
     s1 = [per_step(r["step_s"]) for r in runs1]
@@ -140,6 +129,11 @@ and hypre libraries and buffers (a fixed cost that a 216k-cell case does not amo
 Halo: {ghosts:,} ghost cells over the 2 ranks ({100 * ghosts / cells:.2f}% of the cells), owned
 {', '.join(f'{int(x):,}' for x in k2['owned'])}; pressure CG iterations over the steps: {k1['pressure_iterations']:.0f}
 serially, {k2['pressure_iterations']:.0f} on 2 ranks (AMG coarsening differs between 1 and 2 ranks).
+Memory per cell in the same invocation (`parallel_memory`'s method: the difference between cubes of
+{mem_runs[1][0]['cells']:,} and {mem_runs[1][1]['cells']:,} cells over the cells added, summed over the ranks, so
+the fixed cost of each process drops out): peak resident {mem_rows[-1][1]:,.0f} B/cell serially and
+{mem_rows[-1][2]:,.0f} on 2 ranks, ratio **{mem_rows[-1][2] / mem_rows[-1][1]:.3f}**; live heap after the steps
+{mem_rows[-2][1]:,.0f} and {mem_rows[-2][2]:,.0f}, ratio **{mem_rows[-2][2] / mem_rows[-2][1]:.3f}**.
 The target of issue 23 is a 2-rank speed-up of at least 1.7x with per-cell memory within 10% of serial.
 """
     write_or_print(args.write, NAME, text)
