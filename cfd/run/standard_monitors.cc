@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <functional>
 #include <set>
 
 #include "cfd/parallel/decompose.h"
@@ -16,7 +17,8 @@ namespace fs = std::filesystem;
 
 // --- FieldOutput -------------------------------------------------------------
 
-FieldOutput::FieldOutput(const fs::path& directory, int interval) : directory_(directory), interval_(interval), pvd_(directory / "fields.pvd") {}
+FieldOutput::FieldOutput(const fs::path& directory, int interval)
+    : directory_(directory), interval_(interval), pvd_(directory / "fields.pvd") {}
 
 void FieldOutput::AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) {
   if ((record.last && interval_ >= 0) || (interval_ > 0 && solver.step() % interval_ == 0)) Write(solver);
@@ -60,11 +62,24 @@ std::vector<VtuCellData> BoundaryFields(const PimpleSolver& solver) {
   return out;
 }
 
-// The piece files of `stem` on ranks: stem_r<rank>.<extension>.
-std::vector<std::string> Pieces(const std::string& stem, const std::string& extension, int ranks) {
-  std::vector<std::string> out;
-  for (int r = 0; r < ranks; ++r) out.push_back(fmt::format("{}_r{}.{}", stem, r, extension));
-  return out;
+// Writes `stem`.<extension> in `directory`: serially one file by `write`;
+// on ranks each rank's piece stem_r<rank>.<extension> by `write` and, on
+// rank 0, the index stem.p<extension> naming them by `index`. Returns the
+// file a series lists.
+fs::path WriteInPieces(const fs::path& directory, const std::string& stem, const std::string& extension,
+                       const DomainPart* part, const std::function<void(const fs::path&)>& write,
+                       const std::function<void(const fs::path&, const std::vector<std::string>&)>& index) {
+  if (!part) {
+    const fs::path file = directory / fmt::format("{}.{}", stem, extension);
+    write(file);
+    return file;
+  }
+  std::vector<std::string> pieces;
+  for (int r = 0; r < part->size; ++r) pieces.push_back(fmt::format("{}_r{}.{}", stem, r, extension));
+  OnEveryRank(part, [&] { write(directory / pieces[part->rank]); });
+  const fs::path file = directory / fmt::format("{}.p{}", stem, extension);
+  OnFirstRank(part, [&] { index(file, pieces); });
+  return file;
 }
 
 }  // namespace
@@ -75,19 +90,12 @@ std::vector<std::string> Pieces(const std::string& stem, const std::string& exte
 void FieldOutput::Write(const PimpleSolver& solver) {
   const Mesh& mesh = solver.mesh();
   const DomainPart* part = solver.part() && solver.part()->parallel() ? solver.part() : nullptr;
-  const int ranks = part ? part->size : 1;
   const std::vector<VtuCellData> cell_data = CellFields(solver);
   const std::vector<VtuCellData> boundary = BoundaryFields(solver);
-  const std::string stem = fmt::format("fields_{:06d}", solver.step());
-  fs::path file = directory_ / (stem + ".vtu");
-  if (part) {
-    const std::vector<std::string> pieces = Pieces(stem, "vtu", ranks);
-    OnEveryRank(part, [&] { WriteVtu(directory_ / pieces[part->rank], mesh, cell_data, part->n_owned); });
-    file = directory_ / (stem + ".pvtu");
-    OnFirstRank(part, [&] { WritePvtu(file, pieces, cell_data); });
-  } else {
-    WriteVtu(file, mesh, cell_data);
-  }
+  const fs::path file = WriteInPieces(
+      directory_, fmt::format("fields_{:06d}", solver.step()), "vtu", part,
+      [&](const fs::path& f) { WriteVtu(f, mesh, cell_data, part ? part->n_owned : -1); },
+      [&](const fs::path& f, const std::vector<std::string>& pieces) { WritePvtu(f, pieces, cell_data); });
   OnFirstRank(part, [&] { pvd_.Add(solver.time(), file); });
   // Surface files, each in a series of its own: the patches whose conditions
   // have their own unknowns (eta), and the turbulence model's walls, with
@@ -118,16 +126,10 @@ void FieldOutput::Write(const PimpleSolver& solver) {
       const auto first = b.values.begin() + static_cast<long>(patch.start - ni) * b.components;
       data.push_back({b.name, b.components, std::vector<double>(first, first + patch.size * b.components)});
     }
-    const std::string surface_stem = fmt::format("{}_{:06d}", patch.name, solver.step());
-    fs::path surface_file = directory_ / (surface_stem + ".vtp");
-    if (part) {
-      const std::vector<std::string> pieces = Pieces(surface_stem, "vtp", ranks);
-      OnEveryRank(part, [&] { WritePatchVtp(directory_ / pieces[part->rank], mesh, patch, data); });
-      surface_file = directory_ / (surface_stem + ".pvtp");
-      OnFirstRank(part, [&] { WritePvtp(surface_file, pieces, data); });
-    } else {
-      WritePatchVtp(surface_file, mesh, patch, data);
-    }
+    const fs::path surface_file = WriteInPieces(
+        directory_, fmt::format("{}_{:06d}", patch.name, solver.step()), "vtp", part,
+        [&](const fs::path& f) { WritePatchVtp(f, mesh, patch, data); },
+        [&](const fs::path& f, const std::vector<std::string>& pieces) { WritePvtp(f, pieces, data); });
     OnFirstRank(part, [&] {
       auto [series, inserted] = surfaces_.try_emplace(patch.name, directory_ / (patch.name + ".pvd"));
       series->second.Add(solver.time(), surface_file);
