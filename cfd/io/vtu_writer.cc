@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
-#include <utility>
 #include <numeric>
 #include <span>
+#include <utility>
 
 #include "data/schema/atomic_file.h"
 #include "data/schema/errors.h"

@@ -59,6 +59,27 @@ bool SeveralRanks(MPI_Comm comm) {
   return size > 1;
 }
 
+// Runs `write`; what it throws (a DataFileError, or the file system's own)
+// comes back as its message, empty when it returned.
+std::string ErrorOf(const std::function<void()>& write) {
+  try {
+    write();
+  } catch (const std::exception& e) {
+    const std::string message = e.what();
+    return message.empty() ? "a file could not be written" : message;
+  }
+  return {};
+}
+
+// Rank `root`'s `text` on every rank of `comm` (collective).
+std::string FromRank(MPI_Comm comm, int root, std::string text) {
+  int n = static_cast<int>(text.size());
+  MPI_Bcast(&n, 1, MPI_INT, root, comm);
+  text.resize(static_cast<std::size_t>(n));
+  MPI_Bcast(text.data(), n, MPI_CHAR, root, comm);
+  return text;
+}
+
 }  // namespace
 
 void OnFirstRank(const DomainPart* part, const std::function<void()>& write) {
@@ -72,16 +93,7 @@ void OnFirstRank(MPI_Comm comm, const std::function<void()>& write) {
   }
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  std::string error;
-  if (rank == 0) {
-    try {
-      write();
-    } catch (const std::exception& e) {  // a DataFileError, or the file system's own
-      error = e.what();
-      if (error.empty()) error = "a file could not be written";
-    }
-  }
-  error = FromFirstRank(comm, std::move(error));
+  const std::string error = FromRank(comm, 0, rank == 0 ? ErrorOf(write) : std::string());
   if (!error.empty()) throw DataFileError(error);
 }
 
@@ -94,21 +106,11 @@ void OnEveryRank(const DomainPart* part, const std::function<void()>& write) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
-  std::string error;
-  try {
-    write();
-  } catch (const std::exception& e) {  // a DataFileError, or the file system's own
-    error = e.what();
-    if (error.empty()) error = "a file could not be written";
-  }
+  const std::string error = ErrorOf(write);
+  // The first rank that failed tells every rank.
   int first = error.empty() ? size : rank;
   MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm);
-  if (first == size) return;
-  int n = static_cast<int>(error.size());
-  MPI_Bcast(&n, 1, MPI_INT, first, comm);
-  error.resize(static_cast<std::size_t>(n));
-  MPI_Bcast(error.data(), n, MPI_CHAR, first, comm);
-  throw DataFileError(error);
+  if (first < size) throw DataFileError(FromRank(comm, first, error));
 }
 
 std::string FromFirstRank(const DomainPart* part, std::string text) {
@@ -116,12 +118,7 @@ std::string FromFirstRank(const DomainPart* part, std::string text) {
 }
 
 std::string FromFirstRank(MPI_Comm comm, std::string text) {
-  if (!SeveralRanks(comm)) return text;
-  int n = static_cast<int>(text.size());
-  MPI_Bcast(&n, 1, MPI_INT, 0, comm);
-  text.resize(static_cast<std::size_t>(n));
-  MPI_Bcast(text.data(), n, MPI_CHAR, 0, comm);
-  return text;
+  return SeveralRanks(comm) ? FromRank(comm, 0, std::move(text)) : text;
 }
 
 OwnedEntries OwnEntries(const DomainPart* part, std::span<const int> whole_cells) {

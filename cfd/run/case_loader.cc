@@ -413,12 +413,13 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   }
   Fields fields = LoadBoundary(root["boundary"], mesh, c.motion.get(), {c.whole_mesh.get(), c.part});
   // The propeller and the rudder find their cells on the body-fixed mesh (not
-  // placed yet), on ranks the whole one.
-  std::vector<std::unique_ptr<BodyActuator>> actuators;
-  if (auto propeller = LoadPropellerActuator(c, root)) actuators.push_back(std::move(propeller));
-  if (auto rudder = LoadRudderActuator(c, root)) actuators.push_back(std::move(rudder));
-  const bool flow_through_window = s.time.steady && s.time.steady->window_is_flow_through;
-  const double flow_through = flow_through_window ? FlowThroughTime(whole, s.reference) : 0.0;
+  // placed yet), on ranks the whole one; the rudder samples the flow behind
+  // the propeller.
+  if (auto propeller = LoadPropellerActuator(c, root)) c.actuators.push_back(std::move(propeller));
+  if (auto rudder = LoadRudderActuator(c, root)) c.actuators.push_back(std::move(rudder));
+  if (s.time.steady && s.time.steady->window_is_flow_through) {
+    s.time.steady->criterion.window = FlowThroughTime(whole, s.reference);
+  }
   // The whole mesh has served the set-up: it goes before the solver's fields
   // are allocated (its size would otherwise add to every rank's peak), and
   // the output is written in pieces, so no rank keeps it (rank 0 keeps its
@@ -438,13 +439,8 @@ Case LoadCase(const ConfigNode& root, const fs::path& case_dir, const CaseOverri
   if (c.motion) c.motion->Attach(*c.solver);
   if (root.Has("turbulence")) LoadTurbulence(root["turbulence"], mesh, s.nu, *c.solver, c.part);
   c.free_surface = FindFreeSurface(*c.solver);
-  if (flow_through_window) {
-    s.time.steady->criterion.window = flow_through;
-  }
   ValidateAt(t, [&] { s.time.Validate(); });
   CheckRunSections(root, c);
-  // The rudder samples the flow behind the propeller (the propeller first).
-  c.actuators = std::move(actuators);
   c.maneuver = LoadManeuverPilot(root, c, s.output.directory, overrides.maneuver);
   return c;
 }
