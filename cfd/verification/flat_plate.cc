@@ -261,6 +261,11 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
       r.bounded_cells += solver.turbulence_summary().bounded_k + solver.turbulence_summary().bounded_omega;
     }
     history.push_back(friction());
+    r.max_residual = std::max(s.initial_residual_U, s.initial_residual_p);
+    if (solver.turbulence()) {
+      const TurbulenceSummary& t = solver.turbulence_summary();
+      r.max_residual = std::max({r.max_residual, t.initial_residual_k, t.initial_residual_omega});
+    }
     r.step_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count());
     r.step_cpu_seconds.push_back(static_cast<double>(std::clock() - step_cpu_start) / CLOCKS_PER_SEC);
     r.steps = step + 1;
@@ -268,7 +273,7 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
       const double now = history.back();
       const double before = history[history.size() - 1 - steps_per_flow];
       r.C_F_change = std::abs(now - before) / std::abs(now);
-      if (r.C_F_change < run.tolerance) {
+      if (r.C_F_change < run.tolerance && r.max_residual < run.residual_tolerance) {
         r.converged = true;
         break;
       }

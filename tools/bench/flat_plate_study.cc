@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
   app.add_option("--leading-edge-ratio", o.leading_edge_ratio, "mean / leading-edge cell size")->check(CLI::Range(1.0, 1e3));
   app.add_option("--courant", r.courant, "pseudo-time Courant number at L/2")->check(CLI::PositiveNumber);
   app.add_option("--max-steps", r.max_steps, "step limit")->check(CLI::PositiveNumber);
+  app.add_option("--turbulence-relax", r.turbulence_relax, "implicit relaxation of k and omega (1: none)")
+      ->check(CLI::Range(0.05, 1.0));
   app.add_option("--viscosity-ratio", r.inflow.viscosity_ratio, "inflow nu_t / nu")->check(CLI::PositiveNumber);
   app.add_option("--intensity", r.inflow.intensity, "inflow turbulence intensity")->check(CLI::Range(1e-6, 0.5));
   app.add_option("--initial-viscosity-ratio", r.initial_viscosity_ratio, "initial nu_t / nu (turbulent start)")
@@ -58,9 +60,9 @@ int main(int argc, char** argv) {
     const double sch = SchoenherrFrictionLine(o.reynolds);
     fmt::print(
         "Re_L {:.3g} y+ target {:g}: C_F {:.5e} (ITTC-57 {:+.2f}%, Schoenherr {:+.2f}%), converged {} after {} steps "
-        "(change {:.1e}), {} cells, h {:.4g} m, {:.4f} s/step, plate y+ min/mean/max {:.1f}/{:.1f}/{:.1f}, bounded {}\n",
+        "(change {:.1e}, largest residual {:.1e}), {} cells, h {:.4g} m, {:.4f} s/step, plate y+ min/mean/max {:.1f}/{:.1f}/{:.1f}, bounded {}\n",
         o.reynolds, o.y_plus, res.C_F, 100 * (res.C_F / ittc - 1), 100 * (res.C_F / sch - 1), res.converged, res.steps,
-        res.C_F_change, res.cells, res.h, res.seconds_per_step, res.wall.y_plus_min, res.wall.y_plus_mean,
+        res.C_F_change, res.max_residual, res.cells, res.h, res.seconds_per_step, res.wall.y_plus_min, res.wall.y_plus_mean,
         res.wall.y_plus_max, res.bounded_cells);
     if (r.fixed_steps > 0) {
       const std::size_t skip = std::min<std::size_t>(timing_skip, res.step_seconds.size() - 1);

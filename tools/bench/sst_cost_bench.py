@@ -54,7 +54,8 @@ def run_timed(cmd, env=None, log=None, marker=None):
 
 def kelvin_run(study, args, laminar, mesh_dir, log):
     cmd = [study, "--re", str(args.re), "--y-plus", str(args.y_plus), "--cells-x", str(args.cells_x), "--cells-y",
-           str(args.cells_y), "--steps", str(args.steps), "--timing-skip", str(args.skip)]
+           str(args.cells_y), "--steps", str(args.steps), "--timing-skip", str(args.skip),
+           "--turbulence-relax", "1"]  # as pimpleFoam's "(k|omega).*" 1 below
     if laminar:
         cmd.append("--laminar")
     if mesh_dir:

@@ -28,7 +28,8 @@
 namespace kelvin::cfd {
 namespace {
 
-FlatPlateResult RunPlate(double re, double y_plus, int cells_y, int cells_x, double refinement = 1.0) {
+FlatPlateResult RunPlate(double re, double y_plus, int cells_y, int cells_x, double refinement = 1.0,
+                         double initial_viscosity_ratio = 0.0) {
   FlatPlateOptions o;
   o.reynolds = re;
   o.y_plus = y_plus;
@@ -38,8 +39,10 @@ FlatPlateResult RunPlate(double re, double y_plus, int cells_y, int cells_x, dou
   FlatPlateRunOptions r;
   r.courant = 20.0;
   r.max_steps = 4000;
+  r.initial_viscosity_ratio = initial_viscosity_ratio;
   FlatPlateResult res = RunFlatPlate(o, r);
-  EXPECT_TRUE(res.converged) << "Re " << re << ": C_F still changing by " << res.C_F_change;
+  EXPECT_TRUE(res.converged) << "Re " << re << ": C_F still changing by " << res.C_F_change << ", largest residual "
+                             << res.max_residual;
   EXPECT_EQ(res.bounded_cells, 0);
   const double ittc = data::Ittc57FrictionCoefficient(re);
   std::printf("Re_L %.3g, y+ %.1f (mean %.1f): C_F %.5e, ITTC-57 %+.2f%%, Schoenherr %+.2f%%, %d cells, %d steps\n",
@@ -130,6 +133,27 @@ TEST(FlatPlate, GridConvergenceIsMonotone) {
   EXPECT_EQ(gci.convergence, Convergence::kMonotonic);
   EXPECT_GT(gci.R, 0.0);
   EXPECT_LT(gci.R, 1.0);
+}
+
+// Wall-resolved plate (first cell at y+ about 1, the boundary layer tripped by
+// nu_t / nu = 10 at the start): it must reach a steady state, every initial
+// residual below 1e-4 (FlatPlateRunOptions). Before 2026-12-07 it did not:
+// with k and omega unrelaxed it locked into an oscillation (largest residual
+// 6e-2 on this grid) at C_F 55% below Schoenherr, and the C_F-only criterion
+// called that converged. The steady C_F is compared with OpenFOAM v1912
+// simpleFoam kOmegaSST on the same mesh (tools/bench/flat_plate_peer.py,
+// BENCHMARKS.md `flat_plate_peer`, case 1e7:1:60x60): kPeerCf. Both codes
+// apply the wall cell's omega the same way, so 1% is the difference of two
+// implementations of one model on one mesh. Against Schoenherr both are
+// about 8% low on this grid (issue 22 asks 3%: open; the first cell's height
+// is what matters, see BENCHMARKS.md).
+TEST(FlatPlate, WallResolvedPlateReachesASteadyStateAndMatchesOpenFoamOnTheSameMesh) {
+  const double re = 1e7;
+  const FlatPlateResult r = RunPlate(re, 1.0, 60, 60, 1.0, 10.0);
+  Report("re1e7_yplus1", re, r);
+  EXPECT_LT(r.max_residual, 1e-4);
+  constexpr double kPeerCf = 2.68231e-3;
+  EXPECT_NEAR(r.C_F, kPeerCf, 0.01 * kPeerCf);
 }
 
 }  // namespace

@@ -1,0 +1,254 @@
+#!/usr/bin/env python3
+"""Benchmark: the flat plate's friction, kelvin's k-omega SST against OpenFOAM's kOmegaSST on the same mesh
+(issue 22, acceptance 4).
+
+For each requested (Re_L, y+) the zero-pressure-gradient plate of cfd/verification/flat_plate.h is solved by
+  - kelvin (`flat_plate_study`: pseudo-transient PIMPLE to its steady criterion, which also writes the mesh as a
+    polyMesh), and
+  - OpenFOAM v1912 simpleFoam (SIMPLE; relaxation U 0.7, p 0.3, k and omega 0.7, as kelvin's run) with kOmegaSST
+    on that polyMesh: the same inflow k and omega, the same start (nu_t / nu = 10 everywhere, which trips the
+    boundary layer), linear-upwind U, upwind k and omega, and the wall treatment kelvin's corresponds to
+    (kqRWallFunction: zero-gradient k; omegaWallFunction: the wall cell's omega fixed at the blend of the viscous
+    and log values; nutUSpaldingWallFunction: the wall's nu_t from Spalding's law, zero at y+ about 1).
+The plate's C_F (one side) is compared with Schoenherr's line (the flat-plate line) and ITTC-57 (a ship-model
+correlation line, reported beside it).
+
+Usage: tools/bench/flat_plate_peer.py --study build/ci/tools/bench/flat_plate_study
+           [--case 1e7:1:100x80 --case 1e7:1:100x80:2 ...] [--iterations 6000] [--work DIR] [--write BENCHMARKS.md]
+A case is RE:YPLUS:CELLS_XxCELLS_Y[:REFINEMENT] (cells along the plate and across it, before the systematic
+refinement factor of flat_plate.h, which also divides the first cell's height).
+"""
+import argparse
+import datetime
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pimple_vs_openfoam import HEADER, write, write_or_print  # noqa: E402
+
+NAME = "flat_plate_peer"
+BASHRC = "/usr/share/openfoam/etc/bashrc"
+INTENSITY, VISCOSITY_RATIO, START_RATIO = 0.01, 5.0, 10.0  # kelvin's inflow defaults and the tripping start
+
+
+def schoenherr(re_):
+    """Schoenherr's line 0.242 / sqrt(C_F) = log10(Re C_F), by Newton's method on x = 1 / sqrt(C_F)."""
+    x = 1.0 / math.sqrt(0.075 / (math.log10(re_) - 2.0) ** 2)
+    for _ in range(50):
+        f = 0.242 * x - math.log10(re_ / (x * x))
+        x -= f / (0.242 + 2.0 / (x * math.log(10.0)))
+    return 1.0 / (x * x)
+
+
+def ittc57(re_):
+    return 0.075 / (math.log10(re_) - 2.0) ** 2
+
+
+def run_kelvin(study, case, iterations, mesh_dir, log):
+    cmd = [study, "--re", repr(case["re"]), "--y-plus", repr(case["y_plus"]), "--cells-x", str(case["cells_x"]),
+           "--cells-y", str(case["cells_y"]), "--refinement", repr(case["refinement"]), "--initial-viscosity-ratio",
+           repr(START_RATIO), "--max-steps", str(iterations), "--write-poly-mesh", mesh_dir]
+    env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
+    out = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    with open(log, "w") as f:
+        f.write(out.stdout + out.stderr)
+    m = re.search(r"C_F ([0-9.eE+-]+) .*converged (\w+) after (\d+) steps .*largest residual ([0-9.eE+-]+)\), (\d+) "
+                  r"cells.*plate y\+ min/mean/max ([0-9.]+)/([0-9.]+)/([0-9.]+)", out.stdout)
+    if out.returncode != 0 or not m:
+        sys.exit(f"{' '.join(cmd)} failed:\n{out.stdout[-2000:]}{out.stderr[-2000:]}")
+    return dict(C_F=float(m.group(1)), converged=m.group(2) == "true", steps=int(m.group(3)),
+                residual=float(m.group(4)), cells=int(m.group(5)), y_plus_mean=float(m.group(7)))
+
+
+def field(name, cls, dims, value, wall, plate_value):
+    return HEADER.format(cls=cls, obj=name) + f"""
+dimensions {dims};
+internalField uniform {value};
+boundaryField
+{{
+    inlet {{ type fixedValue; value uniform {value}; }}
+    outlet {{ type inletOutlet; inletValue uniform {value}; value uniform {value}; }}
+    top {{ type inletOutlet; inletValue uniform {value}; value uniform {value}; }}
+    runup {{ type symmetryPlane; }}
+    plate {{ type {wall}; value uniform {plate_value}; }}
+    front {{ type empty; }} back {{ type empty; }}
+}}
+"""
+
+
+def openfoam_case(d, mesh_dir, re_, iterations):
+    nu = 1.0 / re_  # U = 1 m/s, L = 1 m
+    k_in = 1.5 * INTENSITY ** 2
+    w_in = k_in / (VISCOSITY_RATIO * nu)
+    w_start = k_in / (START_RATIO * nu)
+    os.makedirs(os.path.join(d, "constant"), exist_ok=True)
+    shutil.copytree(os.path.join(mesh_dir, "constant", "polyMesh"), os.path.join(d, "constant", "polyMesh"))
+    write(f"{d}/system/controlDict", HEADER.format(cls="dictionary", obj="controlDict") + f"""
+application simpleFoam;
+startFrom startTime; startTime 0; stopAt endTime; endTime {iterations}; deltaT 1;
+writeControl timeStep; writeInterval {iterations}; purgeWrite 0; writeFormat ascii; writePrecision 12;
+timeFormat general; runTimeModifiable false;
+functions
+{{
+    plateForces {{ type forces; libs ("libforces.so"); writeControl timeStep; writeInterval 1; log yes;
+        patches (plate); rho rhoInf; rhoInf 1; CofR (0 0 0); }}
+}}
+""")
+    write(f"{d}/system/fvSchemes", HEADER.format(cls="dictionary", obj="fvSchemes") + """
+ddtSchemes { default steadyState; }
+gradSchemes { default Gauss linear; }
+divSchemes { default none; div(phi,U) bounded Gauss linearUpwind grad(U); div(phi,k) bounded Gauss upwind;
+  div(phi,omega) bounded Gauss upwind; div((nuEff*dev2(T(grad(U))))) Gauss linear; }
+laplacianSchemes { default Gauss linear corrected; }
+interpolationSchemes { default linear; }
+snGradSchemes { default corrected; }
+wallDist { method meshWave; }
+""")
+    write(f"{d}/system/fvSolution", HEADER.format(cls="dictionary", obj="fvSolution") + """
+solvers
+{
+    p { solver GAMG; smoother GaussSeidel; tolerance 1e-12; relTol 0.01; }
+    "(U|k|omega)" { solver PBiCGStab; preconditioner DILU; tolerance 1e-14; relTol 0.01; }
+}
+SIMPLE { nNonOrthogonalCorrectors 0; consistent no; residualControl { p 1e-7; U 1e-8; "(k|omega)" 1e-8; } }
+relaxationFactors { fields { p 0.3; } equations { U 0.7; "(k|omega)" 0.7; } }
+""")
+    write(f"{d}/constant/transportProperties",
+          HEADER.format(cls="dictionary", obj="transportProperties") + f"transportModel Newtonian;\nnu {nu!r};\n")
+    write(f"{d}/constant/turbulenceProperties", HEADER.format(cls="dictionary", obj="turbulenceProperties") +
+          "simulationType RAS;\nRAS { RASModel kOmegaSST; turbulence on; printCoeffs on; }\n")
+    write(f"{d}/0/U", HEADER.format(cls="volVectorField", obj="U") + """
+dimensions [0 1 -1 0 0 0 0];
+internalField uniform (1 0 0);
+boundaryField
+{
+    inlet { type fixedValue; value uniform (1 0 0); }
+    outlet { type zeroGradient; }
+    top { type inletOutlet; inletValue uniform (1 0 0); value uniform (1 0 0); }
+    runup { type symmetryPlane; }
+    plate { type noSlip; }
+    front { type empty; } back { type empty; }
+}
+""")
+    write(f"{d}/0/p", HEADER.format(cls="volScalarField", obj="p") + """
+dimensions [0 2 -2 0 0 0 0];
+internalField uniform 0;
+boundaryField
+{
+    inlet { type zeroGradient; }
+    outlet { type fixedValue; value uniform 0; }
+    top { type fixedValue; value uniform 0; }
+    runup { type symmetryPlane; }
+    plate { type zeroGradient; }
+    front { type empty; } back { type empty; }
+}
+""")
+    write(f"{d}/0/k", field("k", "volScalarField", "[0 2 -2 0 0 0 0]", repr(k_in), "kqRWallFunction", repr(k_in)))
+    omega = field("omega", "volScalarField", "[0 0 -1 0 0 0 0]", repr(w_in), "omegaWallFunction", repr(w_in))
+    write(f"{d}/0/omega", omega.replace(f"internalField uniform {w_in!r}", f"internalField uniform {w_start!r}"))
+    write(f"{d}/0/nut", HEADER.format(cls="volScalarField", obj="nut") + f"""
+dimensions [0 2 -1 0 0 0 0];
+internalField uniform {k_in / w_start!r};
+boundaryField
+{{
+    inlet {{ type calculated; value uniform {k_in / w_in!r}; }}
+    outlet {{ type calculated; value uniform {k_in / w_in!r}; }}
+    top {{ type calculated; value uniform {k_in / w_in!r}; }}
+    runup {{ type symmetryPlane; }}
+    plate {{ type nutUSpaldingWallFunction; value uniform 0; }}
+    front {{ type empty; }} back {{ type empty; }}
+}}
+""")
+
+
+def run_openfoam(d, log):
+    with open(log, "w") as f:
+        subprocess.run(["bash", "-c", f"source {BASHRC} >/dev/null 2>&1; cd {d} && simpleFoam"], stdout=f,
+                       stderr=subprocess.STDOUT, check=True)
+    text = open(log).read()
+    viscous = [float(v) for v in re.findall(r"Sum of forces\s*\n\s*Total\s*:.*\n\s*Pressure\s*:.*\n\s*Viscous\s*:\s*"
+                                            r"\((\S+)", text)]
+    iterations = len(re.findall(r"^Time = ", text, re.M))
+    converged = "SIMPLE solution converged" in text
+    cpu = [float(x) for x in re.findall(r"ExecutionTime = (\S+) s", text)]
+    residual = max(float(x) for x in re.findall(r"Solving for (?:Ux|p|k|omega), Initial residual = ([0-9.eE+-]+)",
+                                                re.split(r"^Time = ", text, flags=re.M)[-1]))
+    return dict(viscous=viscous, iterations=iterations, converged=converged, cpu=cpu[-1], residual=residual)
+
+
+def parse_case(spec):
+    parts = spec.split(":")
+    try:
+        cells_x, cells_y = (int(x) for x in parts[2].split("x"))
+        return dict(re=float(parts[0]), y_plus=float(parts[1]), cells_x=cells_x, cells_y=cells_y,
+                    refinement=float(parts[3]) if len(parts) > 3 else 1.0)
+    except (IndexError, ValueError):
+        sys.exit(f"--case {spec!r}: expected RE:YPLUS:CELLS_XxCELLS_Y[:REFINEMENT], e.g. 1e7:1:100x80")
+
+
+def span_of(mesh_dir):
+    text = open(os.path.join(mesh_dir, "constant", "polyMesh", "points")).read()
+    zs = [float(m) for m in re.findall(r"\(\S+ \S+ (\S+)\)", text)]
+    return max(zs) - min(zs)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--study", required=True, help="kelvin's flat_plate_study program")
+    ap.add_argument("--case", action="append", default=None, metavar="RE:YPLUS:CXxCY[:REF]",
+                    help="a plate run (repeatable; default 1e7:1:100x80)")
+    ap.add_argument("--iterations", type=int, default=6000, help="step limit of both codes")
+    ap.add_argument("--work", default=None)
+    ap.add_argument("--write", help="BENCHMARKS.md to update (default: print the section)")
+    args = ap.parse_args()
+    if not os.path.exists(BASHRC):
+        sys.exit("OpenFOAM is not installed (Debian package 'openfoam'; run tools/setup)")
+    work = args.work or tempfile.mkdtemp(prefix="kelvin_flat_plate_peer_")
+    rows = []
+    for spec in args.case or ["1e7:1:100x80"]:
+        case = parse_case(spec)
+        re_ = case["re"]
+        d = os.path.join(work, spec.replace(":", "_"))
+        if os.path.exists(d):
+            shutil.rmtree(d)
+        os.makedirs(d)
+        k = run_kelvin(args.study, case, args.iterations, os.path.join(d, "mesh"), os.path.join(d, "kelvin.log"))
+        openfoam_case(os.path.join(d, "openfoam"), os.path.join(d, "mesh"), re_, args.iterations)
+        f = run_openfoam(os.path.join(d, "openfoam"), os.path.join(d, "simpleFoam.log"))
+        f["C_F"] = f["viscous"][-1] / (0.5 * 1.0 * 1.0 * span_of(os.path.join(d, "mesh")))
+        rows.append((case, k, f))
+        print(f"{spec}: kelvin C_F {k['C_F']:.5e}, simpleFoam {f['C_F']:.5e}, Schoenherr {schoenherr(re_):.5e}",
+              flush=True)
+    date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    pct = lambda a, b: f"{100 * (a / b - 1):+.2f}%"  # noqa: E731
+    lines = [f"""## flat_plate_peer: the plate's friction, kelvin's SST against OpenFOAM's on the same mesh (issue 22, acceptance 4)
+
+Run by `tools/bench/flat_plate_peer.py` on {date}. The zero-pressure-gradient plate of
+`cfd/verification/flat_plate.h` (one cell thick; the grid column gives the cells along the plate and across it, 16
+more on the run-up, times the refinement factor, which also divides the first cell's height), solved by kelvin (`flat_plate_study`, pseudo-transient to its steady criterion: C_F change per
+flow-through below 2e-5 and every initial residual below 1e-4) and by OpenFOAM v1912 simpleFoam kOmegaSST on the
+polyMesh kelvin wrote (relaxation U 0.7, p 0.3, k and omega 0.7; kqRWallFunction, omegaWallFunction,
+nutUSpaldingWallFunction; the same inflow, I = {INTENSITY:g}, nu_t / nu = {VISCOSITY_RATIO:g}, and the same tripping
+start, nu_t / nu = {START_RATIO:g} everywhere). C_F is one side's friction over 1/2 rho U^2 L; the reference lines are
+Schoenherr's (the flat-plate line) and ITTC-57 (a ship-model correlation line).
+
+| Re_L | y+ (mean) | grid | cells | kelvin C_F | vs Schoenherr | vs ITTC-57 | kelvin steps (converged, residual) | simpleFoam C_F | vs Schoenherr | simpleFoam iterations (converged, residual) | kelvin / simpleFoam |
+| ---: | ---: | --- | ---: | ---: | ---: | ---: | --- | ---: | ---: | --- | ---: |"""]
+    for case, k, f in rows:
+        re_ = case["re"]
+        s, i = schoenherr(re_), ittc57(re_)
+        grid = f"{case['cells_x']} x {case['cells_y']}" + (f", x{case['refinement']:g}" if case["refinement"] != 1 else "")
+        lines.append(f"| {re_:.0e} | {k['y_plus_mean']:.1f} | {grid} | {k['cells']:,} | {k['C_F']:.5e} | {pct(k['C_F'], s)} | "
+                     f"{pct(k['C_F'], i)} | {k['steps']} ({'yes' if k['converged'] else 'NO'}, {k['residual']:.1e}) | "
+                     f"{f['C_F']:.5e} | {pct(f['C_F'], s)} | {f['iterations']} ({'yes' if f['converged'] else 'no'}, "
+                     f"{f['residual']:.1e}) | {k['C_F'] / f['C_F']:.4f} |")
+    write_or_print(args.write, NAME, "\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()
