@@ -30,6 +30,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pimple_vs_openfoam import HEADER, write, write_or_print  # noqa: E402
+from sst_cost_bench import plate_fields, plate_schemes  # noqa: E402
 
 NAME = "flat_plate_peer"
 BASHRC = "/usr/share/openfoam/etc/bashrc"
@@ -65,22 +66,6 @@ def run_kelvin(study, case, iterations, mesh_dir, log):
                 residual=float(m.group(4)), cells=int(m.group(5)), y_plus_mean=float(m.group(7)))
 
 
-def field(name, cls, dims, value, wall, plate_value):
-    return HEADER.format(cls=cls, obj=name) + f"""
-dimensions {dims};
-internalField uniform {value};
-boundaryField
-{{
-    inlet {{ type fixedValue; value uniform {value}; }}
-    outlet {{ type inletOutlet; inletValue uniform {value}; value uniform {value}; }}
-    top {{ type inletOutlet; inletValue uniform {value}; value uniform {value}; }}
-    runup {{ type symmetryPlane; }}
-    plate {{ type {wall}; value uniform {plate_value}; }}
-    front {{ type empty; }} back {{ type empty; }}
-}}
-"""
-
-
 def openfoam_case(d, mesh_dir, re_, iterations):
     nu = 1.0 / re_  # U = 1 m/s, L = 1 m
     k_in = 1.5 * INTENSITY ** 2
@@ -99,16 +84,7 @@ functions
         patches (plate); rho rhoInf; rhoInf 1; CofR (0 0 0); }}
 }}
 """)
-    write(f"{d}/system/fvSchemes", HEADER.format(cls="dictionary", obj="fvSchemes") + """
-ddtSchemes { default steadyState; }
-gradSchemes { default Gauss linear; }
-divSchemes { default none; div(phi,U) bounded Gauss linearUpwind grad(U); div(phi,k) bounded Gauss upwind;
-  div(phi,omega) bounded Gauss upwind; div((nuEff*dev2(T(grad(U))))) Gauss linear; }
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes { default corrected; }
-wallDist { method meshWave; }
-""")
+    plate_schemes(d, "steadyState", bounded="bounded ")
     write(f"{d}/system/fvSolution", HEADER.format(cls="dictionary", obj="fvSolution") + """
 solvers
 {
@@ -122,48 +98,7 @@ relaxationFactors { fields { p 0.3; } equations { U 0.7; "(k|omega)" 0.7; } }
           HEADER.format(cls="dictionary", obj="transportProperties") + f"transportModel Newtonian;\nnu {nu!r};\n")
     write(f"{d}/constant/turbulenceProperties", HEADER.format(cls="dictionary", obj="turbulenceProperties") +
           "simulationType RAS;\nRAS { RASModel kOmegaSST; turbulence on; printCoeffs on; }\n")
-    write(f"{d}/0/U", HEADER.format(cls="volVectorField", obj="U") + """
-dimensions [0 1 -1 0 0 0 0];
-internalField uniform (1 0 0);
-boundaryField
-{
-    inlet { type fixedValue; value uniform (1 0 0); }
-    outlet { type zeroGradient; }
-    top { type inletOutlet; inletValue uniform (1 0 0); value uniform (1 0 0); }
-    runup { type symmetryPlane; }
-    plate { type noSlip; }
-    front { type empty; } back { type empty; }
-}
-""")
-    write(f"{d}/0/p", HEADER.format(cls="volScalarField", obj="p") + """
-dimensions [0 2 -2 0 0 0 0];
-internalField uniform 0;
-boundaryField
-{
-    inlet { type zeroGradient; }
-    outlet { type fixedValue; value uniform 0; }
-    top { type fixedValue; value uniform 0; }
-    runup { type symmetryPlane; }
-    plate { type zeroGradient; }
-    front { type empty; } back { type empty; }
-}
-""")
-    write(f"{d}/0/k", field("k", "volScalarField", "[0 2 -2 0 0 0 0]", repr(k_in), "kqRWallFunction", repr(k_in)))
-    omega = field("omega", "volScalarField", "[0 0 -1 0 0 0 0]", repr(w_in), "omegaWallFunction", repr(w_in))
-    write(f"{d}/0/omega", omega.replace(f"internalField uniform {w_in!r}", f"internalField uniform {w_start!r}"))
-    write(f"{d}/0/nut", HEADER.format(cls="volScalarField", obj="nut") + f"""
-dimensions [0 2 -1 0 0 0 0];
-internalField uniform {k_in / w_start!r};
-boundaryField
-{{
-    inlet {{ type calculated; value uniform {k_in / w_in!r}; }}
-    outlet {{ type calculated; value uniform {k_in / w_in!r}; }}
-    top {{ type calculated; value uniform {k_in / w_in!r}; }}
-    runup {{ type symmetryPlane; }}
-    plate {{ type nutUSpaldingWallFunction; value uniform 0; }}
-    front {{ type empty; }} back {{ type empty; }}
-}}
-""")
+    plate_fields(d, True, k_in, w_in, nut_wall="nutUSpaldingWallFunction", w_start=w_start)
 
 
 def run_openfoam(d, log):

@@ -81,22 +81,7 @@ deltaT {dt!r}; writeControl timeStep; writeInterval 1000000; purgeWrite 0;
 writeFormat binary; writePrecision 17; writeCompression off; timeFormat general;
 runTimeModifiable false;
 """)
-    write(f"{d}/system/fvSchemes", HEADER.format(cls="dictionary", obj="fvSchemes") + """
-ddtSchemes { default Euler; }
-gradSchemes { default Gauss linear; }
-divSchemes
-{
-    default none;
-    div(phi,U) Gauss linearUpwind grad(U);
-    div(phi,k) Gauss upwind;
-    div(phi,omega) Gauss upwind;
-    div((nuEff*dev2(T(grad(U))))) Gauss linear;
-}
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes { default corrected; }
-wallDist { method meshWave; }
-""")
+    plate_schemes(d, "Euler")
     # One outer iteration per step: it is the final one, so the *Final
     # solver and relaxation entries apply (kelvin's relax_U_final = relax_U).
     write(f"{d}/system/fvSolution", HEADER.format(cls="dictionary", obj="fvSolution") + """
@@ -119,6 +104,34 @@ relaxationFactors
     write(f"{d}/constant/turbulenceProperties", HEADER.format(cls="dictionary", obj="turbulenceProperties") +
           ("simulationType RAS;\nRAS { RASModel kOmegaSST; turbulence on; printCoeffs on; }\n" if sst
            else "simulationType laminar;\n"))
+    plate_fields(d, sst, k_in, w_in)
+
+
+def plate_schemes(d, ddt, bounded=""):
+    """system/fvSchemes of the flat plate's OpenFOAM case: linear-upwind U, upwind k and omega, Gauss linear
+    gradients; `bounded` ("bounded ") for a steady solver's convection terms."""
+    write(f"{d}/system/fvSchemes", HEADER.format(cls="dictionary", obj="fvSchemes") + f"""
+ddtSchemes {{ default {ddt}; }}
+gradSchemes {{ default Gauss linear; }}
+divSchemes
+{{
+    default none;
+    div(phi,U) {bounded}Gauss linearUpwind grad(U);
+    div(phi,k) {bounded}Gauss upwind;
+    div(phi,omega) {bounded}Gauss upwind;
+    div((nuEff*dev2(T(grad(U))))) Gauss linear;
+}}
+laplacianSchemes {{ default Gauss linear corrected; }}
+interpolationSchemes {{ default linear; }}
+snGradSchemes {{ default corrected; }}
+wallDist {{ method meshWave; }}
+""")
+
+
+def plate_fields(d, sst, k_in, w_in, nut_wall="nutkWallFunction", w_start=None):
+    """The 0/ fields of the flat plate's OpenFOAM case (patches of cfd/verification/flat_plate.h): uniform inflow,
+    pressure outlet on the outlet and the top, slip run-up, no-slip plate; with SST, k and omega at the inflow
+    values (omega at w_start inside, if given, for a tripping start), and the plate's nu_t wall function."""
     empty = "front { type empty; } back { type empty; }"
     write(f"{d}/0/U", HEADER.format(cls="volVectorField", obj="U") + f"""
 dimensions [0 1 -1 0 0 0 0];
@@ -148,11 +161,12 @@ boundaryField
 """)
     if not sst:
         return
-    for name, value, wall, dims in (("k", k_in, "kqRWallFunction", "[0 2 -2 0 0 0 0]"),
-                                    ("omega", w_in, "omegaWallFunction", "[0 0 -1 0 0 0 0]")):
+    w_start = w_in if w_start is None else w_start
+    for name, value, inside, wall, dims in (("k", k_in, k_in, "kqRWallFunction", "[0 2 -2 0 0 0 0]"),
+                                            ("omega", w_in, w_start, "omegaWallFunction", "[0 0 -1 0 0 0 0]")):
         write(f"{d}/0/{name}", HEADER.format(cls="volScalarField", obj=name) + f"""
 dimensions {dims};
-internalField uniform {value!r};
+internalField uniform {inside!r};
 boundaryField
 {{
     inlet {{ type fixedValue; value uniform {value!r}; }}
@@ -165,14 +179,14 @@ boundaryField
 """)
     write(f"{d}/0/nut", HEADER.format(cls="volScalarField", obj="nut") + f"""
 dimensions [0 2 -1 0 0 0 0];
-internalField uniform {k_in / w_in!r};
+internalField uniform {k_in / w_start!r};
 boundaryField
 {{
     inlet {{ type calculated; value uniform {k_in / w_in!r}; }}
     outlet {{ type calculated; value uniform {k_in / w_in!r}; }}
     top {{ type calculated; value uniform {k_in / w_in!r}; }}
     runup {{ type symmetryPlane; }}
-    plate {{ type nutkWallFunction; value uniform 0; }}
+    plate {{ type {nut_wall}; value uniform 0; }}
     {empty}
 }}
 """)
