@@ -37,17 +37,18 @@ BASHRC = "/usr/share/openfoam/etc/bashrc"
 INTENSITY, VISCOSITY_RATIO, START_RATIO = 0.01, 5.0, 10.0  # kelvin's inflow defaults and the tripping start
 
 
+def ittc57(re_):
+    return 0.075 / (math.log10(re_) - 2.0) ** 2
+
+
 def schoenherr(re_):
-    """Schoenherr's line 0.242 / sqrt(C_F) = log10(Re C_F), by Newton's method on x = 1 / sqrt(C_F)."""
-    x = 1.0 / math.sqrt(0.075 / (math.log10(re_) - 2.0) ** 2)
+    """Schoenherr's line 0.242 / sqrt(C_F) = log10(Re C_F), by Newton's method on x = 1 / sqrt(C_F), started from
+    the ITTC-57 line."""
+    x = 1.0 / math.sqrt(ittc57(re_))
     for _ in range(50):
         f = 0.242 * x - math.log10(re_ / (x * x))
         x -= f / (0.242 + 2.0 / (x * math.log(10.0)))
     return 1.0 / (x * x)
-
-
-def ittc57(re_):
-    return 0.075 / (math.log10(re_) - 2.0) ** 2
 
 
 def run_kelvin(study, case, iterations, mesh_dir, log):
