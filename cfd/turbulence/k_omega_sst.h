@@ -25,8 +25,9 @@
 //
 // Walls: Spalding's law gives u_tau and the wall eddy viscosity at any y+
 // (wall_functions.h); omega in the wall cells is fixed to the blended
-// viscous/log value; k has zero gradient at the wall; in log-layer wall
-// cells (y+ above the linear/log intersection) the k production is the
+// viscous/log value (its viscous part consistent with the discrete omega
+// equation of the cells beyond, KOmegaSstOptions::wall_omega); k has zero
+// gradient at the wall; in log-layer wall cells (y+ above the linear/log intersection) the k production is the
 // wall-function value u_tau^2 * Cmu^0.25 sqrt(k) / (kappa y), and the
 // strain rate in their nu_t limiter is the log law's u_tau / (kappa y): the
 // cell gradient of a wall cell sees the jump from the wall value to the
@@ -84,6 +85,16 @@ struct KOmegaSstOptions {
   // (I = 1%, nu_t/nu = 1-10) the ambient omega exceeds the outer
   // boundary-layer omega of model-scale plates and damps it.
   bool sustain = false;
+  // The viscous part of the wall cells' fixed omega (wall_functions.h):
+  // kDiscreteSublayer scales the sublayer solution's point value by
+  // SublayerOmegaScale() so that the next cells' discrete omega follows the
+  // sublayer solution; kPointValue is the point value itself, as OpenFOAM's
+  // omegaWallFunction, which on a wall-resolved plate (first cell centre at
+  // y+ 1) leaves omega 1.5 times too high in the next cells and C_F 8% below
+  // Schoenherr's line (docs/formulation.md section 8.2). Log-layer wall cells
+  // (y+ 30 and above) take the log-law value either way.
+  enum class WallOmega { kDiscreteSublayer, kPointValue };
+  WallOmega wall_omega = WallOmega::kDiscreteSublayer;
   // Tolerances and iteration limit of the k and omega solves (hypre
   // BiCGStab with an ILU(0) preconditioner; the type field is not used).
   LinearSolverOptions solver;

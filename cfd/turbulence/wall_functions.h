@@ -27,10 +27,27 @@ struct WallLaw {
 };
 
 // Wall value of omega in the first cell, blended between the viscous
-// sublayer solution 6 nu / (beta1 y^2) and the log-layer value
-// u_tau / (sqrt(beta*) kappa y) as sqrt(omega_vis^2 + omega_log^2)
-// (each term dominates in its own region; the blend is smooth across the
-// buffer layer).
-double WallOmega(double y, double u_tau, double nu, double kappa, double beta1, double beta_star);
+// sublayer value and the log-layer value u_tau / (sqrt(beta*) kappa y) as
+// sqrt(omega_vis^2 + omega_log^2) (each term dominates in its own region;
+// the blend is smooth across the buffer layer). The viscous part is
+// viscous_scale * 6 nu / (beta1 y^2): 1 gives the point value of the
+// sublayer solution at the cell centre (OpenFOAM's omegaWallFunction),
+// SublayerOmegaScale() the value that is consistent with the discrete
+// omega equation of the cells beyond (docs/formulation.md section 8.2).
+double WallOmega(double y, double u_tau, double nu, double kappa, double beta1, double beta_star,
+                 double viscous_scale = 1.0);
+
+// The scale c of the wall cell's fixed viscous omega, c * 6 nu / (beta1 y1^2),
+// for which the finite-volume sublayer equation
+//   d/dy (nu d omega/dy) = beta1 omega^2
+// on cells of equal height h has a solution that tends to the exact
+// 6 nu / (beta1 y^2) away from the wall. In wall units W = beta1 h^2 omega / nu
+// the cell balance reads W_{j-1} - 2 W_j + W_{j+1} = W_j^2 and the exact
+// cell-centre values are 6 / (j - 1/2)^2; the scale is W_1 / 24 of the
+// discrete solution whose far values are 6 / (j - 1/2 - s)^2 with no shift s
+// of the wall: c = 0.26146. With c = 1 (the point value) the discrete solution
+// is that of a wall displaced by s = 0.7 cell heights: omega 1.55 times the
+// sublayer value in the second cell, 1.15 times in the tenth.
+double SublayerOmegaScale();
 
 }  // namespace kelvin::cfd

@@ -202,6 +202,7 @@ FlatPlateResult RunFlatPlate(const FlatPlateOptions& o, const FlatPlateRunOption
   sst.inflow = run.inflow;
   sst.inflow.reference_speed = U;
   sst.relax = run.turbulence_relax;
+  sst.wall_omega = run.wall_omega;
   if (!run.laminar) {
     auto model = std::make_unique<KOmegaSst>(mesh, nu, sst, roles);
     if (run.initial_viscosity_ratio > 0.0) {

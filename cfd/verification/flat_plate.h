@@ -72,6 +72,8 @@ struct FlatPlateRunOptions {
   // length depends on the inflow values, and the friction lines describe
   // fully turbulent plates.
   double initial_viscosity_ratio = 0.0;
+  // The wall cells' viscous omega (KOmegaSstOptions::wall_omega).
+  KOmegaSstOptions::WallOmega wall_omega = KOmegaSstOptions::WallOmega::kDiscreteSublayer;
   // Laminar run on the same mesh (the cost baseline of the SST benchmark).
   bool laminar = false;
   bool progress = false;

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "cfd/grid/mesh_writer.h"
@@ -48,6 +49,12 @@ int main(int argc, char** argv) {
   app.add_option("--timing-skip", timing_skip, "start-up steps excluded from the timing line (with --steps)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--write-poly-mesh", poly_mesh_dir, "write the mesh to DIR/constant/polyMesh before the run");
+  const std::map<std::string, KOmegaSstOptions::WallOmega> wall_omega{
+      {"sublayer", KOmegaSstOptions::WallOmega::kDiscreteSublayer},
+      {"point", KOmegaSstOptions::WallOmega::kPointValue}};
+  app.add_option("--wall-omega", r.wall_omega,
+                 "wall cells' viscous omega: sublayer (consistent with the discrete equation) or point (OpenFOAM's)")
+      ->transform(CLI::CheckedTransformer(wall_omega, CLI::ignore_case));
   app.add_flag("--laminar", r.laminar, "no turbulence model (cost baseline)");
   app.add_flag("--progress", r.progress, "log every 50 steps");
   app.add_flag("--profile", profile, "print the u+ profile at 0.8 L");

@@ -2,7 +2,9 @@
 // model relies on, against exact answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "cfd/fv/fv_matrix.h"
 #include "cfd/linalg/linear_solver.h"
@@ -85,6 +87,69 @@ TEST(WallOmega, BlendsViscousAndLogValues) {
               1e-3 * 6 * nu / (beta1 * y_small * y_small));
   const double log_value = u_tau / (std::sqrt(beta_star) * kappa * y_large);
   EXPECT_NEAR(WallOmega(y_large, u_tau, nu, kappa, beta1, beta_star), log_value, 1e-4 * log_value);
+}
+
+// The finite-volume sublayer equation on cells of equal height, in wall
+// units W = beta1 h^2 omega / nu: W_{j-1} - 2 W_j + W_{j+1} = W_j^2 for
+// j = 2..n, the wall cell fixed at W_1 = c * 24 (c times the point value
+// 6 / (1/2)^2) and the exact value 6 / (n + 1/2)^2 beyond cell n. Newton
+// with a tridiagonal solve, from the exact values.
+std::vector<double> DiscreteSublayer(double c, int n) {
+  auto exact = [](int j) { return 6.0 / ((j - 0.5) * (j - 0.5)); };
+  std::vector<double> w(n + 2);
+  for (int j = 1; j <= n + 1; ++j) w[j] = exact(j);
+  w[1] = 24.0 * c;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    // Residual and Jacobian of rows 2..n; Thomas algorithm (sub and super
+    // diagonals are 1).
+    std::vector<double> diag(n + 1), rhs(n + 1);
+    for (int j = 2; j <= n; ++j) {
+      rhs[j] = -(w[j - 1] - 2.0 * w[j] + w[j + 1] - w[j] * w[j]);
+      diag[j] = -2.0 - 2.0 * w[j];
+    }
+    for (int j = 3; j <= n; ++j) {
+      const double m = 1.0 / diag[j - 1];
+      diag[j] -= m;
+      rhs[j] -= m * rhs[j - 1];
+    }
+    double largest = 0.0;
+    double next = 0.0;
+    for (int j = n; j >= 2; --j) {
+      const double d = (rhs[j] - next) / diag[j];
+      w[j] += d;
+      next = d;
+      largest = std::max(largest, std::abs(d) / w[j]);
+    }
+    if (largest < 1e-14) return w;
+  }
+  ADD_FAILURE() << "Newton did not converge for c = " << c;
+  return w;
+}
+
+// The virtual wall of the discrete solution at cell j: W_j = 6 / (j - 1/2 - s)^2.
+double WallShift(const std::vector<double>& w, int j) { return j - 0.5 - std::sqrt(6.0 / w[j]); }
+
+// SublayerOmegaScale() is the wall-cell value whose discrete sublayer has no
+// displaced wall: measured s = -0.003 at cell 200 (the point value, c = 1,
+// gives s = 0.71 there, and omega 1.55 times the exact value in cell 2;
+// c 10% higher or lower, s = 0.058 and -0.073).
+// The Newton solve is independent of the recursion the scale came from.
+TEST(WallOmega, SublayerScaleLeavesTheDiscreteWallInPlace) {
+  const double c = SublayerOmegaScale();
+  EXPECT_NEAR(c, 0.2615, 5e-4);
+  const std::vector<double> consistent = DiscreteSublayer(c, 3000);
+  const std::vector<double> point = DiscreteSublayer(1.0, 3000);
+  EXPECT_LT(std::abs(WallShift(consistent, 200)), 0.02);
+  EXPECT_LT(std::abs(WallShift(consistent, 1000)), 0.02);
+  EXPECT_NEAR(WallShift(point, 200), 0.70, 0.03);
+  EXPECT_NEAR(point[2] / (6.0 / (1.5 * 1.5)), 1.55, 0.01);
+  // The shift is monotone in c: 10% either side of the scale moves it out.
+  EXPECT_GT(WallShift(DiscreteSublayer(1.1 * c, 3000), 200), 0.02);
+  EXPECT_LT(WallShift(DiscreteSublayer(0.9 * c, 3000), 200), -0.02);
+  // WallOmega applies it to the viscous part only.
+  const double nu = 1e-6, beta1 = 0.075, y = 1e-6;
+  EXPECT_NEAR(WallOmega(y, 1e-3, nu, 0.41, beta1, 0.09, c), c * 6 * nu / (beta1 * y * y),
+              1e-5 * 6 * nu / (beta1 * y * y));
 }
 
 TEST(WallDistance, ChannelIsExact) {
