@@ -9,7 +9,7 @@ enum class TimeScheme { kEuler, kBackward };
 // Convection: first-order upwind; linear-upwind (second order, unbounded);
 // limited (bounded second order: van Leer TVD limiter on the
 // gradient-based ratio); linear (central, unbounded).
-enum class ConvectionScheme { kUpwind, kLinearUpwind, kLimited, kLinear };
+enum class ConvectionScheme { kUpwind, kLinearUpwind, kLimited, kLinear, kLust };
 
 struct SchemeOptions {
   TimeScheme time = TimeScheme::kEuler;

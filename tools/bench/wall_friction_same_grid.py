@@ -23,7 +23,6 @@ grid 3 and about 25 on grid 1 (205k cells).
 """
 import argparse
 import datetime
-import math
 import os
 import re
 import shutil
@@ -33,6 +32,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doublebody_study import ittc57  # noqa: E402
 from pimple_vs_openfoam import write_or_print  # noqa: E402
 
 NAME = "wall_friction_same_grid"
@@ -43,9 +43,6 @@ U, LPP, NU, RHO = 1.668, 5.976, 1.09e-6, 998.8
 INTENSITY, VISCOSITY_RATIO = 0.01, 10.0  # the case's turbulence.inflow
 SLIP = ("freeSurface", "side", "bottom")
 
-
-def ittc57(re_):
-    return 0.075 / (math.log10(re_) - 2.0) ** 2
 
 
 def foam_file(cls, obj, body):
