@@ -122,7 +122,8 @@ SchemeOptions LoadSchemes(const ConfigNode& root) {
                                  {{"upwind", ConvectionScheme::kUpwind},
                                   {"linear_upwind", ConvectionScheme::kLinearUpwind},
                                   {"limited", ConvectionScheme::kLimited},
-                                  {"linear", ConvectionScheme::kLinear}});
+                                  {"linear", ConvectionScheme::kLinear},
+                                  {"lust", ConvectionScheme::kLust}});
     schemes.non_orthogonal_correction = s.Get<bool>("non_orthogonal_correction", schemes.non_orthogonal_correction);
     schemes.skew_correction = s.Get<bool>("skew_correction", schemes.skew_correction);
     schemes.face_centre_correction = s.Get<bool>("face_centre_correction", schemes.face_centre_correction);
@@ -172,7 +173,7 @@ PimpleOptions LoadPimple(const ConfigNode& root) {
 // `turbulence:` k-omega SST (or laminar) on the solver.
 void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, PimpleSolver& solver,
                     std::shared_ptr<const DomainPart> part) {
-  tn.ExpectKeys({"model", "inflow", "convection", "relax", "solver"});
+  tn.ExpectKeys({"model", "inflow", "convection", "relax", "wall_omega", "solver"});
   const std::string model = tn.Get<std::string>("model");
   if (model != "kOmegaSST" && model != "laminar") tn["model"].Fail("kOmegaSST or laminar");
   if (model == "kOmegaSST") {
@@ -189,6 +190,9 @@ void LoadTurbulence(const ConfigNode& tn, const Mesh& mesh, double nu, PimpleSol
     so.convection = GetEnum(tn, "convection", ConvectionScheme::kUpwind,
                            {{"upwind", ConvectionScheme::kUpwind}, {"limited", ConvectionScheme::kLimited}});
     so.relax = tn.Get<double>("relax", so.relax);
+    so.wall_omega = GetEnum(tn, "wall_omega", so.wall_omega,
+                            {{"sublayer", KOmegaSstOptions::WallOmega::kDiscreteSublayer},
+                             {"point", KOmegaSstOptions::WallOmega::kPointValue}});
     // The k and omega solves: their tolerances and iteration limit (the method is BiCGStab with ILU(0)).
     if (tn.Has("solver")) {
       tn["solver"].ExpectKeys({"relative_tolerance", "absolute_tolerance", "max_iterations"});

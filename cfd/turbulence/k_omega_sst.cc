@@ -134,8 +134,7 @@ void KOmegaSst::UpdateWall(const VectorField& U) {
   std::vector<double> omega_sum(mesh_.n_cells(), 0.0), prod_sum(mesh_.n_cells(), 0.0);
   std::vector<double> strain_sum(mesh_.n_cells(), 0.0);
   std::vector<int> count(mesh_.n_cells(), 0), log_count(mesh_.n_cells(), 0);
-  const double viscous_scale =
-      opt_.wall_omega == KOmegaSstOptions::WallOmega::kDiscreteSublayer ? SublayerOmegaScale() : 1.0;
+  const bool sublayer = opt_.wall_omega == KOmegaSstOptions::WallOmega::kDiscreteSublayer;
   for (std::size_t p = 0; p < roles_.size(); ++p) {
     if (roles_[p] != TurbulencePatchRole::kWall) continue;
     const Patch& patch = mesh_.patches()[p];
@@ -154,6 +153,7 @@ void KOmegaSst::UpdateWall(const VectorField& U) {
       // Kinematic shear stress on the wall, in the direction of the flow
       // past it: (nu + nu_t,w) (u_P - u_w)_t / y.
       tau_w_[b] = (nu_ + nut_wall_[b]) * du / y;
+      const double viscous_scale = sublayer ? SublayerOmegaScale(y_plus_[b]) : 1.0;
       omega_sum[c] += WallOmega(y, u_tau, nu_, opt_.wall_law.kappa, opt_.beta1, opt_.beta_star, viscous_scale);
       ++count[c];
       if (y_plus_[b] > y_lam) {

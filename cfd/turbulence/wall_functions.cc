@@ -59,4 +59,12 @@ double SublayerOmegaScale() {
   return 0.26146;
 }
 
+double SublayerOmegaScale(double y_plus) {
+  constexpr double full = 5.0 / 3.0, none = 5.0;
+  if (y_plus <= full) return SublayerOmegaScale();
+  if (y_plus >= none) return 1.0;
+  const double s = std::log(y_plus / full) / std::log(none / full);
+  return std::pow(SublayerOmegaScale(), 1.0 - s);
+}
+
 }  // namespace kelvin::cfd

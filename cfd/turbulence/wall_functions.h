@@ -50,4 +50,11 @@ double WallOmega(double y, double u_tau, double nu, double kappa, double beta1, 
 // sublayer value in the second cell, 1.15 times in the tenth.
 double SublayerOmegaScale();
 
+// The scale a wall cell at `y_plus` takes. The derivation above holds while
+// the next cells lie in the viscous sublayer (y+ < 5; the second cell centre
+// is at 3 y1 on equal cells): c in full up to y1+ = 5/3, none (1, the point
+// value of the validated wall-function treatment) from y1+ = 5, where the wall
+// cell itself leaves the sublayer, geometric in ln y+ between.
+double SublayerOmegaScale(double y_plus);
+
 }  // namespace kelvin::cfd

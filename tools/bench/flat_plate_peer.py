@@ -29,6 +29,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doublebody_study import ittc57  # noqa: E402
 from pimple_vs_openfoam import HEADER, write, write_or_print  # noqa: E402
 from sst_cost_bench import plate_fields, plate_schemes  # noqa: E402
 
@@ -36,9 +37,6 @@ NAME = "flat_plate_peer"
 BASHRC = "/usr/share/openfoam/etc/bashrc"
 INTENSITY, VISCOSITY_RATIO, START_RATIO = 0.01, 5.0, 10.0  # kelvin's inflow defaults and the tripping start
 
-
-def ittc57(re_):
-    return 0.075 / (math.log10(re_) - 2.0) ** 2
 
 
 def schoenherr(re_):

@@ -126,9 +126,9 @@ TEST(FlatPlate, WallFunctionResultIndependentOfYPlus) {
 // The observed order and GCI are printed (Celik et al. 2008 via ComputeGci).
 // The wall functions' own dependence on the first cell's y+ is the test
 // above; until 2026-12-07 this family refined the first cell too (y+ 100, 70,
-// 50) and called the mix convergence: R 0.83 with the point-value wall omega,
-// 1.32 (divergent) with the sublayer-consistent one, whose blend leans less
-// on the viscous value at y+ 50. Held at y+ 100: measured R 0.45 and 0.43.
+// 50) and called the mix convergence (R 0.83; 1.32, divergent, with a wall
+// omega that leaned less on the viscous value at y+ 50). Held at y+ 100:
+// measured R 0.43.
 TEST(FlatPlate, GridConvergenceIsMonotone) {
   const double re = 1e7, r = std::sqrt(2.0);
   const FlatPlateResult g3 = RunPlate(re, 100.0, 30, 60, 1.0);

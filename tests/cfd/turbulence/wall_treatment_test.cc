@@ -146,6 +146,18 @@ TEST(WallOmega, SublayerScaleLeavesTheDiscreteWallInPlace) {
   // The shift is monotone in c: 10% either side of the scale moves it out.
   EXPECT_GT(WallShift(DiscreteSublayer(1.1 * c, 3000), 200), 0.02);
   EXPECT_LT(WallShift(DiscreteSublayer(0.9 * c, 3000), 200), -0.02);
+  // In full while the next cells are in the sublayer, none from y+ 5 on,
+  // monotone between.
+  EXPECT_EQ(SublayerOmegaScale(0.2), c);
+  EXPECT_EQ(SublayerOmegaScale(5.0 / 3.0), c);
+  EXPECT_EQ(SublayerOmegaScale(5.0), 1.0);
+  EXPECT_EQ(SublayerOmegaScale(100.0), 1.0);
+  double previous = c;
+  for (double y_plus = 1.7; y_plus < 5.0; y_plus += 0.1) {
+    EXPECT_GT(SublayerOmegaScale(y_plus), previous) << "y+ " << y_plus;
+    previous = SublayerOmegaScale(y_plus);
+  }
+  EXPECT_NEAR(SublayerOmegaScale(std::sqrt(5.0 * 5.0 / 3.0)), std::sqrt(c), 1e-12);
   // WallOmega applies it to the viscous part only.
   const double nu = 1e-6, beta1 = 0.075, y = 1e-6;
   EXPECT_NEAR(WallOmega(y, 1e-3, nu, 0.41, beta1, 0.09, c), c * 6 * nu / (beta1 * y * y),
