@@ -8,7 +8,9 @@ namespace kelvin::cfd {
 enum class TimeScheme { kEuler, kBackward };
 // Convection: first-order upwind; linear-upwind (second order, unbounded);
 // limited (bounded second order: van Leer TVD limiter on the
-// gradient-based ratio); linear (central, unbounded).
+// gradient-based ratio); linear (central, unbounded); LUST (3/4 central with
+// each side's value carried to the face centre by its gradient, 1/4
+// linear upwind; unbounded, less dissipative than linear upwind).
 enum class ConvectionScheme { kUpwind, kLinearUpwind, kLimited, kLinear, kLust };
 
 struct SchemeOptions {

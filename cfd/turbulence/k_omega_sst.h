@@ -27,9 +27,10 @@
 // (wall_functions.h); omega in the wall cells is fixed to the blended
 // viscous/log value (its viscous part consistent with the discrete omega
 // equation of the cells beyond, KOmegaSstOptions::wall_omega); k has zero
-// gradient at the wall; in log-layer wall cells (y+ above the linear/log intersection) the k production is the
-// wall-function value u_tau^2 * Cmu^0.25 sqrt(k) / (kappa y), and the
-// strain rate in their nu_t limiter is the log law's u_tau / (kappa y): the
+// gradient at the wall; in log-layer wall cells (y+ above the linear/log
+// intersection) the k production is the wall-function value
+// u_tau^2 * Cmu^0.25 sqrt(k) / (kappa y), and the strain rate in their nu_t
+// limiter is the log law's u_tau / (kappa y): the
 // cell gradient of a wall cell sees the jump from the wall value to the
 // cell value, U_P / y_P, which overstates the log-layer strain by the
 // factor kappa u+ (about 7 at y+ 100), so the limiter would cut the wall
@@ -91,8 +92,9 @@ struct KOmegaSstOptions {
   // sublayer solution; kPointValue is the point value itself, as OpenFOAM's
   // omegaWallFunction, which on a wall-resolved plate (first cell centre at
   // y+ 1) leaves omega 1.5 times too high in the next cells and C_F 8% below
-  // Schoenherr's line (docs/formulation.md section 8.2). Log-layer wall cells
-  // (y+ 30 and above) take the log-law value either way.
+  // Schoenherr's line (docs/formulation.md section 8.2). The scale acts on
+  // wall cells below y+ 5 only (SublayerOmegaScale(y_plus)); wall-function
+  // cells take the same value either way.
   enum class WallOmega { kDiscreteSublayer, kPointValue };
   WallOmega wall_omega = WallOmega::kDiscreteSublayer;
   // Tolerances and iteration limit of the k and omega solves (hypre
