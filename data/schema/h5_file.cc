@@ -76,6 +76,9 @@ void CheckChunks(const fs::path& file, const std::string& name, hid_t ds, hid_t 
 // measured series, and such a dataset holds none.
 void CheckDeclaredSize(const fs::path& file, const std::string& name, hid_t ds, std::span<const hsize_t> dims,
                        hsize_t stored_bytes_per_value) {
+  // H5Tget_size returns 0 for a type it cannot read; the product below
+  // would then pass any element count (found by the fuzzer: 2e15 values).
+  if (stored_bytes_per_value == 0) Fail(file, name, "corrupt datatype: its size is unreadable");
   long double declared = static_cast<long double>(stored_bytes_per_value);
   for (hsize_t d : dims) declared *= static_cast<long double>(d);
   if (declared == 0.0L) return;

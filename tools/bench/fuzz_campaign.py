@@ -249,16 +249,19 @@ def in_libhdf5(r):
 
 def replay(binary, artifact, env):
     """What an artifact's replay reports: (kind, site), kind 'leak', 'ub' or 'crash' (an out-of-memory
-    included); site 'libhdf5' when the first frame outside libFuzzer, the sanitizer, its allocator and
+    included), or 'none' when the input runs clean alone; site 'libhdf5' when the first frame outside libFuzzer, the sanitizer, its allocator and
     interceptors and libc is in libhdf5, else 'kelvin'."""
     # The malloc limit of the campaign, but a higher RSS limit: an input whose RSS creeps up to the limit before
     # its one huge malloc is then reported at that malloc, with its stack, not by the RSS thread without one. The
     # time-out makes libFuzzer print the stack of a hang.
     try:
-        out = subprocess.run([binary, "-malloc_limit_mb=2048", "-rss_limit_mb=8192", f"-timeout={TIMEOUT_SECONDS}", artifact],
-                             env=env, capture_output=True, text=True, errors="replace", timeout=2 * TIMEOUT_SECONDS).stderr
+        p = subprocess.run([binary, "-malloc_limit_mb=2048", "-rss_limit_mb=8192", f"-timeout={TIMEOUT_SECONDS}", artifact],
+                           env=env, capture_output=True, text=True, errors="replace", timeout=2 * TIMEOUT_SECONDS)
     except subprocess.TimeoutExpired:
         return "crash", "kelvin"
+    if p.returncode == 0:
+        return "none", "not reproduced"  # it crashed only inside the fork-mode run
+    out = p.stderr
     kind = "leak" if "ERROR: LeakSanitizer" in out else "ub" if "runtime error:" in out else "crash"
     for line in out.splitlines():
         m = re.match(r"\s+#\d+ 0x[0-9a-f]+ (?:in (\S+) )?(.*)", line)
@@ -322,6 +325,9 @@ def fuzz(build, target, runs, seconds, work):
                 r["timeout"] = r["timeout"] or a.startswith("timeout-")
                 continue
             kind, site = replay(binary, os.path.join(artifacts, a), env)
+            if kind == "none":
+                r["not_reproduced"] = r.get("not_reproduced", 0) + 1
+                continue
             key = "library_defects" if site == "libhdf5" else {"leak": "leaks", "ub": "ub", "crash": "crashes"}[kind]
             r[key] += 1
         # Its exit status is that of the last failed job; with no progress line the parent itself failed.
@@ -464,7 +470,9 @@ def section(stored, targets, build, current, notes):
                      "; ".join(f"{r['target']} {required_runs(r['target']) / r['exec_s'] / 3600:.1f} h" for r in todo) + ".")
     for r in rows:
         if r["artifacts"] or notes.get(r["target"]):
-            lines.append(f"- {r['target']}: " + "; ".join(filter(None, [", ".join(r["artifacts"]), notes.get(r["target"])])))
+            found = r["artifacts"] if len(r["artifacts"]) <= 10 else [
+                f"{len(r['artifacts'])} artifact files ({r['artifacts'][0]} ... {r['artifacts'][-1]})"]
+            lines.append(f"- {r['target']}: " + "; ".join(filter(None, [", ".join(found), notes.get(r["target"])])))
     return "\n".join(lines) + "\n"
 
 
