@@ -175,19 +175,18 @@ void AddConvection(FvMatrix<T>& m, const CellField<T>& field, std::span<const do
     const bool from_owner = F >= 0.0;
     const int U = from_owner ? P : N;
     const int D = from_owner ? N : P;
+    // A cell's value carried to the face centre by its gradient.
+    auto at_face = [&](int c) -> T { return phi[c] + Dot(grad[c], Vector3(xf[f] - xc[c])); };
     T face;
     switch (scheme) {
       case ConvectionScheme::kLinearUpwind:
-        face = phi[U] + Dot(grad[U], Vector3(xf[f] - xc[U]));
+        face = at_face(U);
         break;
-      case ConvectionScheme::kLust: {
-        // 3/4 central (each side's value carried to the face centre by its
-        // gradient, so skewed faces stay second order) and 1/4 linear upwind.
-        const T central = 0.5 * (phi[P] + Dot(grad[P], Vector3(xf[f] - xc[P])) + phi[N] +
-                                 Dot(grad[N], Vector3(xf[f] - xc[N])));
-        face = 0.75 * central + 0.25 * (phi[U] + Dot(grad[U], Vector3(xf[f] - xc[U])));
+      case ConvectionScheme::kLust:
+        // 3/4 central from both sides (second order on skewed faces too) and
+        // 1/4 linear upwind.
+        face = 0.75 * (0.5 * (at_face(P) + at_face(N))) + 0.25 * at_face(U);
         break;
-      }
       case ConvectionScheme::kLimited: {
         const double frac = from_owner ? 1.0 - w[f] : w[f];
         face = LimitedFace(phi[U], phi[D], Dot(grad[U], Vector3(xc[D] - xc[U])), frac);

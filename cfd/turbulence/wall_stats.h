@@ -4,11 +4,13 @@
 // The treatment (Spalding's law, wall_functions.h) covers the viscous
 // sublayer, the buffer layer and the log layer in the momentum equation, but
 // the flat plate (Re_L 1e7, BENCHMARKS.md `flat_plate_peer`) shows where the
-// friction is right: C_F within 1% of Schoenherr's line at y+ 20-100, 5-6% low
-// at y+ 0.5, 8% low at y+ 1 (OpenFOAM's kOmegaSST too, on the same mesh), 10%
-// low at y+ 2, and no steady state at y+ 5 and 10 (21% high at 10): the wall
+// friction is right: C_F within 1% of Schoenherr's line at y+ 20-100 and
+// within 2% at y+ 0.25-2 (with the sublayer-consistent wall omega,
+// wall_functions.h; the point value of OpenFOAM's omegaWallFunction is 4-10%
+// low there), and no steady state at y+ 5 and 10 (21% high at 10): the wall
 // cell's omega and production switch between the sublayer and the log law
-// there. That lower range has no guard yet (issue 22). The upper limit is the end of the log layer, near 0.1-0.2 of the boundary
+// there. That buffer range has no guard yet (issue 22). The upper limit is
+// the end of the log layer, near 0.1-0.2 of the boundary
 // layer thickness in wall units: at the DTC's model Reynolds number (9e6)
 // delta+ is about 3000 at mid-length (delta = 0.37 x Re_x^-0.2, u_tau from
 // C_F = 0.003), and smaller forward, so a first cell centre beyond y+ = 300
