@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "cfd/bc/curved_wall_pressure.h"
 #include "cfd/bc/outlet_inlet.h"
 #include "cfd/freesurface/linearized_free_surface.h"
 #include "cfd/run/case_config.h"
@@ -180,8 +181,13 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, c
     if (!(f >= 0.0 && f <= 1.0)) n["fraction"].Fail("a value fraction in [0, 1]");
     return std::make_unique<Mixed<double>>(n.Get<double>("value", 0.0), n.Get<double>("gradient", 0.0), f);
   }
+  if (type == "curvedSlipWall") {
+    n.ExpectKeys({"type"});
+    return std::make_unique<CurvedWallPressure>();
+  }
   if (type == "linearizedFreeSurface") return LoadFreeSurface(n, mesh, patch, motion, ranks);
-  n["type"].Fail("one of fixedValue, zeroGradient, outletInlet, farField, empty, mixed, linearizedFreeSurface");
+  n["type"].Fail(
+      "one of fixedValue, zeroGradient, outletInlet, farField, empty, mixed, curvedSlipWall, linearizedFreeSurface");
 }
 
 }  // namespace kelvin::cfd

@@ -247,6 +247,9 @@ Fields LoadBoundary(const ConfigNode& b, const Mesh& mesh, const RigidMeshMotion
     if (p_bcs.back()->type() == "linearizedFreeSurface" && u_bcs.back()->type() != "zeroGradient") {
       pn["U"]["type"].Fail("zeroGradient on a linearizedFreeSurface patch (its flux comes from the pressure equation)");
     }
+    if (p_bcs.back()->type() == "curvedSlipWall" && u_bcs.back()->type() != "slip") {
+      pn["U"]["type"].Fail("slip on a curvedSlipWall patch (its pressure gradient is an inviscid wall's)");
+    }
   }
   f.U = std::make_unique<VectorField>("U", mesh, std::move(u_bcs));
   f.p = std::make_unique<ScalarField>("p", mesh, std::move(p_bcs));

@@ -310,14 +310,23 @@ void PimpleSolver::FluxHbyA(double dt, bool backward, double alpha_U, const std:
   phi_HbyA.resize(nf);
   rAUf.resize(nf);
   std::vector<Vector3> HbyA_boundary(nf - ni);
+  const auto mag = mesh_.face_area_magnitudes();
   for (int p = 0; p < U_->n_patches(); ++p) {
     const Patch& patch = mesh_.patches()[p];
     const auto& bc = U_->bc(p);
+    // Where the velocity fixes the flux and the pressure condition is a
+    // gradient (a curved slip wall's), the predicted flux carries that
+    // gradient so that the corrected flux is the prescribed one.
+    const auto& p_bc = p_->bc(p);
+    const bool fixed_flux = bc.fixes_value();
     for (int i = 0; i < patch.size; ++i) {
       const int f = patch.start + i;
       rAUf[f] = rAU[owner[f]];
       HbyA_boundary[f - ni] = bc.value_internal()[i].cwiseProduct(HbyA[owner[f]]) + bc.value_boundary()[i];
       phi_HbyA[f] = HbyA_boundary[f - ni].dot(sf[f]);
+      if (fixed_flux && p_bc.gradient_internal()[i] == 0.0) {
+        phi_HbyA[f] += rAUf[f] * mag[f] * p_bc.gradient_boundary()[i];
+      }
     }
   }
   const bool skew = schemes_.skew_correction;

@@ -7,7 +7,7 @@ losses, so the pressure resistance must fall to zero as the grid is refined and 
 C_p = 1. The script
   - meshes the three-grid snappy family (`kelvin mesh ... --family 3`) unless it is there,
   - runs data/cases/resistance/spheroid_dalembert.yaml on each grid through `kelvin gci` (once per --variant, each
-    a `schemes:` mapping that replaces the case's),
+    a mapping of the case's keys to set, e.g. the hull's pressure condition or the schemes),
   - reads R_P, C_P and the hull's pressure per face (resistance.h5) and reports, per grid, R_P, its share of the
     viscous run's R_T, the largest C_p at the bow and at the stern (cell values on the wall faces, which is what
     the forces integrate), the fore- and after-body parts of R_P, and the observed order of R_P against the exact
@@ -16,7 +16,7 @@ The viscous reference R_T is that of data/cases/resistance/spheroid_double_body.
 k-omega SST with wall functions, on its own grid; --viscous-rt, or --viscous to run it).
 
 Usage:
-  tools/bench/dalembert.py --kelvin build/ci/tools/kelvin [--variant 'NAME={...}' ...] [--viscous]
+  tools/bench/dalembert.py --kelvin build/ci/tools/kelvin [--variant 'NAME={key.key: value, ...}' ...] [--viscous]
                            [--work DIR] [--write BENCHMARKS.md]
 """
 import argparse
@@ -73,16 +73,19 @@ def wall_cp(run_dir):
                 fore=float(drag[fore].sum()), aft=float(drag[~fore].sum()))
 
 
-def variant_case(work, name, schemes):
-    """The case with its schemes replaced (None: as it is)."""
+def variant_case(work, name, overrides):
+    """The case with `overrides` (a YAML mapping of dotted keys, e.g. `{schemes.convection: lust}`) set; None: as
+    it is."""
     with open(CASE) as f:
-        text = f.read()
-    text = text.replace("../../../", ROOT + "/")
-    if schemes:
-        text = re.sub(r"^schemes: .*$", "schemes: " + schemes, text, flags=re.M)
+        case = yaml.safe_load(f.read().replace("../../../", ROOT + "/"))
+    for key, value in (yaml.safe_load(overrides) if overrides else {}).items():
+        node, *path = case, *key.split(".")
+        for k in path[:-1]:
+            node = node[k]
+        node[path[-1]] = value
     path = os.path.join(work, f"case_{name}.yaml")
     with open(path, "w") as f:
-        f.write(text)
+        yaml.safe_dump(case, f, sort_keys=False)
     return path
 
 
@@ -107,7 +110,8 @@ def main():
     ap.add_argument("--kelvin", required=True)
     ap.add_argument("--grids", default=GRIDS, help="family directory (meshed from the mesh case when missing)")
     ap.add_argument("--variant", action="append", default=[],
-                    help="NAME=SCHEMES: a run of the family with the case's schemes mapping replaced (repeatable; "
+                    help="NAME=OVERRIDES: a run of the family with the case's keys set, OVERRIDES a YAML mapping of "
+                         "dotted keys (e.g. '{schemes.convection: lust}'; repeatable; NAME=: the case as it is; "
                          "default: the case as it is)")
     ap.add_argument("--viscous", action="store_true", help="run the viscous reference (spheroid_double_body)")
     ap.add_argument("--viscous-rt", type=float, default=None, help="the viscous reference R_T (N), if known")
@@ -118,11 +122,11 @@ def main():
     if not os.path.exists(os.path.join(args.grids, "family.txt")):
         run([args.kelvin, "mesh", MESH_CASE, "--family", "3", "-o", args.grids], os.path.join(args.work, "mesh.log"))
     rt = viscous_rt(args.kelvin, args.work) if args.viscous else args.viscous_rt
-    variants = [v.split("=", 1) for v in args.variant] or [["case", None]]
+    variants = [[n, o or None] for n, o in (v.split("=", 1) for v in args.variant)] or [["case", None]]
     tables = []
-    for name, schemes in variants:
+    for name, overrides in variants:
         runs = os.path.join(args.work, name)
-        run([args.kelvin, "gci", variant_case(args.work, name, schemes), "--grids", args.grids, "--outputs", "C_P",
+        run([args.kelvin, "gci", variant_case(args.work, name, overrides), "--grids", args.grids, "--outputs", "C_P",
              "--runs", runs, "--rerun", "--no-progress",
              # the base cells are whole numbers per length (20, 14, 10), so the ratios differ by 5.4%
              "--ratio-tolerance", "0.1"], os.path.join(args.work, f"gci_{name}.log"))
@@ -134,7 +138,7 @@ def main():
             r.update(level=g["level"], cells=g["cells"], steps=g["steps"], settled=g["steady_converged"],
                      cpu=g["cpu_seconds"], hull=hull_cell(os.path.join(args.grids, f"grid{g['level']}")))
             rows.append(r)
-        tables.append((name, schemes, rows))
+        tables.append((name, overrides, rows))
     write_or_print(args.write, NAME, render(tables, rt, args.grids))
 
 
@@ -146,13 +150,13 @@ def render(tables, rt, grids):
 Run by `tools/bench/dalembert.py` on {date}. The submerged 5:1 prolate spheroid (L = 1 m, axis 0.25 m under a slip
 lid) of `data/cases/resistance/spheroid_dalembert.yaml` at U = {SPEED} m/s, slip walls everywhere and no turbulence
 model, on the snappy family `{rel}` (no prism layers; grid 3 coarsest). d'Alembert: R_P = 0 and C_p = 1 at both
-stagnation points. C_p max is the largest wall-face value (the cell value under the zero-gradient pressure
-condition, as the forces integrate it); fore and aft are the parts of R_P from x > L/2 and x < L/2; the order is
+stagnation points. C_p max is the largest wall-face value (what the forces integrate: the cell value under the
+zero-gradient pressure condition, carried to the wall by the curved-wall condition's dp/dn); fore and aft are the parts of R_P from x > L/2 and x < L/2; the order is
 that of R_P against zero between a grid and the next coarser, with h the hull cell size."""]
     if rt:
         out.append(f"The viscous reference: R_T = {rt:.4g} N (spheroid_double_body.yaml, no-slip, k-omega SST).")
-    for name, schemes, rows in tables:
-        out.append(f"\n### {name}" + (f": schemes `{schemes}`" if schemes else ": the case's schemes") + "\n")
+    for name, overrides, rows in tables:
+        out.append(f"\n### {name}" + (f": the case with `{overrides}`" if overrides else ": the case as it is") + "\n")
         out.append("| grid | cells | hull cell (mm) | R_P (N) | " + ("R_P / R_T | " if rt else "") +
                    "C_P | order | C_p max, bow | C_p max, stern | fore (N) | aft (N) | steps (settled) | CPU (s) |")
         out.append("| ---: | ---: | ---: | ---: | " + ("---: | " if rt else "") +

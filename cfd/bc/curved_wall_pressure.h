@@ -1,0 +1,66 @@
+// Pressure at a curved slip wall (docs/formulation.md section 4.6).
+//
+// A zero normal gradient at a slip wall puts the wall cell's pressure on the
+// wall. Where the wall is curved that is wrong at first order in the cell
+// size: the flow that follows the wall turns, and the normal momentum balance
+// at an impermeable wall (u . n = 0 along the wall, inviscid) asks for
+//
+//   dp/dn = u_t . (grad_s n) . u_t
+//
+// (kinematic pressure; n the outward normal of the fluid, grad_s n the
+// surface gradient of that normal, u_t the tangential velocity): the pressure
+// falls toward a convex wall by u_t^2 / R. This is the curvature-corrected
+// symmetry condition of Dadone and Grossman (AIAA J. 32, 1994), carried to
+// unstructured grids with a mesh-estimated curvature by Wang and Sun (AIAA
+// 2002-0966), here for an incompressible, cell-centred scheme. With the zero gradient the
+// wall cell feels about half the normal pressure gradient the turning flow
+// needs, and the scheme loses total pressure along a curved body (the
+// d'Alembert test, BENCHMARKS.md `dalembert`).
+//
+// The condition is Neumann with that gradient, explicit in the velocity:
+//   p_b = p_P + g d,   snGrad(p)_b = g,   g = u_t . S . u_t,
+// with d the normal distance from the cell centre to the face. u_t is the
+// tangential part of the owner cell's velocity, reconstructed from the face
+// fluxes of the cell (u_P = sum_f F_f (x_f - x_P) / V_P, exact for a uniform
+// flow), so the condition needs nothing but the flux the solver hands every
+// condition. S = grad_s n comes from cfd/bc/wall_curvature.h (zero at
+// sharp edges: no finite curvature to correct with). |g| d is capped at half the tangential
+// dynamic head u_t^2 / 2, past which the cell is too coarse for the wall's
+// radius (kappa d > 1/2) and the Taylor step would overshoot.
+//
+// The wall is impermeable: the solver's predicted flux on a face whose
+// velocity condition fixes the flux carries this gradient, so the corrected
+// flux stays the prescribed zero (PimpleSolver::FluxHbyA).
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cfd/bc/boundary_condition.h"
+#include "cfd/bc/wall_curvature.h"
+
+namespace kelvin::cfd {
+
+class CurvedWallPressure : public BoundaryCondition<double> {
+ public:
+  void Update(const BcContext& ctx, std::span<const double> cell_values) override;
+  std::string type() const override { return "curvedSlipWall"; }
+  PatchRole role() const override { return PatchRole::kSymmetry; }
+
+  const WallCurvature& curvature() const { return curvature_; }
+  // The normal gradient g of each face (m/s^2) and how many faces the cap
+  // limited, as of the last Update.
+  std::span<const double> normal_gradient() const { return gb_; }
+  int capped_faces() const { return capped_; }
+
+ private:
+  WallCurvature curvature_;
+  int capped_ = 0;
+};
+
+// The velocity of cell c from the fluxes through its faces,
+// u = sum_f F_f (x_f - x_c) / V (F outward from c); exact for a uniform flow.
+Vector3 CellVelocityFromFluxes(const Mesh& mesh, std::span<const double> face_flux, int c);
+
+}  // namespace kelvin::cfd
