@@ -28,35 +28,66 @@
 // dynamic head u_t^2 / 2, past which the cell is too coarse for the wall's
 // radius (kappa d > 1/2) and the Taylor step would overshoot.
 //
+// g is explicit in the velocity, and the wall cell's velocity answers a
+// change of its wall pressure within a step: at large time steps the loop
+// gains about dt |u_t| kappa per step (300 at the DTC's stem at Courant 25,
+// where the run diverged in two steps). Each step therefore moves g from the
+// last step's value g^n toward the new one g* by
+//   beta = 1 / (1 + dt |u_t| kappa),   kappa = |g*| / |u_t|^2,
+// which keeps the loop gain below 1 and leaves g = g* in a steady state;
+// with a small step (time-accurate runs) beta is 1. g^n is checkpointed.
+//
 // The wall is impermeable: the solver's predicted flux on a face whose
 // velocity condition fixes the flux carries this gradient, so the corrected
 // flux stays the prescribed zero (PimpleSolver::FluxHbyA).
 #pragma once
 
+#include <Eigen/Dense>
+#include <limits>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "cfd/bc/boundary_condition.h"
-#include "cfd/bc/wall_curvature.h"
+#include "cfd/freesurface/linearized_free_surface.h"
 
 namespace kelvin::cfd {
 
 class CurvedWallPressure : public BoundaryCondition<double> {
  public:
+  // Fits the wall's curvature on patch `patch_index` of `mesh` as placed now,
+  // kept in the body frame (the mesh moves rigidly). On MPI ranks `mesh` is
+  // the rank's local mesh and `ranks` names the whole one: the fit is made on
+  // the whole patch, so a face at a partition edge has every neighbour and
+  // the answers do not depend on the partition.
+  CurvedWallPressure(const Mesh& mesh, int patch_index, const FreeSurfaceOnRanks& ranks = {});
   void Update(const BcContext& ctx, std::span<const double> cell_values) override;
   std::string type() const override { return "curvedSlipWall"; }
   PatchRole role() const override { return PatchRole::kSymmetry; }
 
-  const WallCurvature& curvature() const { return curvature_; }
+  // S of each face in the body frame (x_E = R x_body + t: S_E = R S R^T).
+  const std::vector<Eigen::Matrix3d>& body_curvature() const { return body_shape_; }
   // The normal gradient g of each face (m/s^2) and how many faces the cap
   // limited, as of the last Update.
   std::span<const double> normal_gradient() const { return gb_; }
   int capped_faces() const { return capped_; }
+  // [time of g, time of g^n, g per face, g^n per face] for checkpoints, the
+  // faces those of the whole patch on every MPI rank (collective there).
+  std::vector<double> State() const override;
+  void SetState(std::span<const double> state) override;
 
  private:
-  WallCurvature curvature_;
+  std::vector<Eigen::Matrix3d> body_shape_;
+  std::shared_ptr<const DomainPart> part_;  // set on ranks only
+  std::vector<int> whole_index_;            // on ranks: each face's index in the whole patch
+  std::vector<int> owner_;                  // on ranks: each face's local owner cell
+  int whole_size_ = 0;
   int capped_ = 0;
+  std::vector<double> g_, g_step_;  // g as last computed, and as it was at the end of the last step
+  double time_ = std::numeric_limits<double>::quiet_NaN();       // ctx.time of g_
+  double step_time_ = std::numeric_limits<double>::quiet_NaN();  // time of g_step_
+  bool restored_ = false;  // g_ comes from a checkpoint: use it as it is at its own time
 };
 
 // The velocity of cell c from the fluxes through its faces,

@@ -183,7 +183,7 @@ std::unique_ptr<BoundaryCondition<double>> LoadPressureBc(const ConfigNode& n, c
   }
   if (type == "curvedSlipWall") {
     n.ExpectKeys({"type"});
-    return std::make_unique<CurvedWallPressure>();
+    return std::make_unique<CurvedWallPressure>(mesh, patch, ranks);
   }
   if (type == "linearizedFreeSurface") return LoadFreeSurface(n, mesh, patch, motion, ranks);
   n["type"].Fail(
