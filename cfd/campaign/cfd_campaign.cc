@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "cfd/campaign/appendage_run.h"
+#include "cfd/campaign/run_samples.h"
 #include "cfd/campaign/worker_process.h"
 #include "cfd/parallel/domain_part.h"
 #include "cfd/run/captive_sampler.h"
@@ -41,11 +42,6 @@ class RunDivergedError : public InputError {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-// The extra channels beside X, Y, N in the samples and in the campaign file.
-constexpr std::array<std::string_view, 9> kExtraChannels = {
-    "X_pressure", "Y_pressure", "N_pressure", "X_viscous", "Y_viscous",
-    "N_viscous",  "X_prime",    "Y_prime",    "N_prime"};
 
 struct Job {
   enum class State { kLeft, kRunning, kDone, kFailed };
@@ -145,84 +141,6 @@ std::vector<Job> PlanJobs(const data::CampaignFile& f, const data::CaptiveShip& 
     }
   }
   return jobs;
-}
-
-// --- samples files -----------------------------------------------------------
-
-// Cost of a run so far, carried across resumes in the samples file: process
-// CPU time of the time steps (s), the largest Courant number and the cells
-// (the PMM cost benchmark reads them from result.h5).
-struct RunCost {
-  double cpu_seconds = 0.0;
-  double courant_max = 0.0;
-  double cells = 0.0;
-};
-
-// Whether a steady run settled: the result file's attributes, read back
-// into the campaign's captive runs.
-struct Settle {
-  int settled = -1;  // -1: no criterion
-  double change = 0.0;
-  double t_settle = 0.0;  // s, start of the settled part
-};
-
-void WriteSamples(const fs::path& path, const std::vector<CaptiveSample>& samples, int step,
-                  int steps, const RunCost& cost, const Settle& settle = {}) {
-  data::H5Writer w(path);
-  w.SetAttribute("/", "kind", "kelvin captive CFD run samples");
-  w.SetAttribute("/", "step", static_cast<double>(step));
-  w.SetAttribute("/", "steps", static_cast<double>(steps));
-  w.SetAttribute("/", "cpu_seconds", cost.cpu_seconds);
-  w.SetAttribute("/", "courant_max", cost.courant_max);
-  w.SetAttribute("/", "cells", cost.cells);
-  if (settle.settled >= 0) {
-    w.SetAttribute("/", "settled", static_cast<double>(settle.settled));
-    w.SetAttribute("/", "settle_change", settle.change);
-    w.SetAttribute("/", "t_settle", settle.t_settle);
-  }
-  WriteCaptiveHistory(w, samples);
-  w.Commit();
-}
-
-std::vector<CaptiveSample> ReadSamples(const fs::path& path, const RigidMotion& motion) {
-  const data::H5Reader r(path);
-  auto col = [&](std::string_view name) { return r.Read("captive/" + std::string(name)).values; };
-  const std::vector<double> t = col("time");
-  const std::vector<double> xp = col("X_pressure"), yp = col("Y_pressure"), np = col("N_pressure");
-  const std::vector<double> xv = col("X_viscous"), yv = col("Y_viscous"), nv = col("N_viscous");
-  const std::vector<double> x1 = col("X_prime"), y1 = col("Y_prime"), n1 = col("N_prime");
-  std::vector<CaptiveSample> out(t.size());
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    out[i].time = t[i];
-    out[i].pose = motion.At(t[i]);
-    out[i].loads.pressure = {xp[i], yp[i], np[i]};
-    out[i].loads.viscous = {xv[i], yv[i], nv[i]};
-    out[i].prime = {x1[i], y1[i], n1[i]};
-  }
-  return out;
-}
-
-double Extra(const CaptiveSample& s, std::size_t k) {
-  switch (k) {
-    case 0:
-      return s.loads.pressure.X;
-    case 1:
-      return s.loads.pressure.Y;
-    case 2:
-      return s.loads.pressure.N;
-    case 3:
-      return s.loads.viscous.X;
-    case 4:
-      return s.loads.viscous.Y;
-    case 5:
-      return s.loads.viscous.N;
-    case 6:
-      return s.prime.X;
-    case 7:
-      return s.prime.Y;
-    default:
-      return s.prime.N;
-  }
 }
 
 void WriteProgressFile(const Job& job, double seconds) {
@@ -758,22 +676,6 @@ data::CaptiveRun CaptiveRunOf(const Job& job, const std::vector<CaptiveSample>& 
     run.force[2].push_back(total.N);
   }
   return run;
-}
-
-// The pressure and viscous parts and the prime-system loads of one run,
-// beside its X, Y, N.
-void WriteExtraChannels(data::H5Writer& w, const std::string& run,
-                        const std::vector<CaptiveSample>& samples) {
-  for (std::size_t k = 0; k < kExtraChannels.size(); ++k) {
-    std::vector<double> v;
-    for (const CaptiveSample& s : samples) v.push_back(Extra(s, k));
-    const bool prime = k >= 6;
-    w.WriteArray(fmt::format("runs/{}/{}", run, kExtraChannels[k]), v, {v.size()},
-                 prime ? "1" : (k % 3 == 2 ? "N m" : "N"),
-                 prime
-                     ? "prime system: forces / (0.5 rho Lpp T U^2), moment / (0.5 rho Lpp^2 T U^2)"
-                     : (k < 3 ? "pressure part" : "viscous part"));
-  }
 }
 
 // The ship file's propeller and rudder, for the fit of the interaction coefficients.

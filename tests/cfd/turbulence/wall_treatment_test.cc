@@ -26,17 +26,13 @@ TEST(WallStats, AreaSharesByBandAndTheGuard) {
   EXPECT_DOUBLE_EQ(s.y_plus_max, 2000);
   EXPECT_DOUBLE_EQ(s.y_plus_mean, (0.5 + 100 + 1050 + 8000) / 10.0);
   const std::array<double, 7> expected{0.1, 0, 0, 0.2, 0, 0.3, 0.4};
-  for (std::size_t b = 0; b < expected.size(); ++b)
-    EXPECT_DOUBLE_EQ(s.area_fraction[b], expected[b]) << b;
+  for (std::size_t b = 0; b < expected.size(); ++b) EXPECT_DOUBLE_EQ(s.area_fraction[b], expected[b]) << b;
   EXPECT_DOUBLE_EQ(s.AreaBeyond(kWallYPlusLimit), 0.7);
   EXPECT_DOUBLE_EQ(s.AreaBeyond(1000), 0.4);
-  EXPECT_NE(YPlusWarning(s).find("WARNING: 70% of the area of 'hull'"), std::string::npos)
-      << YPlusWarning(s);
-  EXPECT_EQ(YPlusDistribution(s),
-            "y+ on hull by area: <1 10.0%, 1-5 0.0%, 5-30 0.0%, 30-100 20.0%, 100-300 0.0%, "
-            "300-1000 30.0%, >=1000 40.0%");
-  const WallPatchStats quiet =
-      SummarizeWall("hull", std::vector<double>{50, 400}, std::vector<double>{9, 1});
+  EXPECT_NE(YPlusWarning(s).find("WARNING: 70% of the area of 'hull'"), std::string::npos) << YPlusWarning(s);
+  EXPECT_EQ(YPlusDistribution(s), "y+ on hull by area: <1 10.0%, 1-5 0.0%, 5-30 0.0%, 30-100 20.0%, 100-300 0.0%, "
+                                  "300-1000 30.0%, >=1000 40.0%");
+  const WallPatchStats quiet = SummarizeWall("hull", std::vector<double>{50, 400}, std::vector<double>{9, 1});
   EXPECT_DOUBLE_EQ(quiet.AreaBeyond(kWallYPlusLimit), 0.1);
   EXPECT_EQ(YPlusWarning(quiet), "");
 }
@@ -45,26 +41,19 @@ TEST(WallStats, AreaSharesByBandAndTheGuard) {
 // no steady state at 5 and 10) on more than 10% of the area. y+ 2 and 20
 // themselves were measured good and do not count.
 TEST(WallStats, BufferLayerGuard) {
-  const WallPatchStats buffer =
-      SummarizeWall("hull", std::vector<double>{8, 60, 2, 20}, std::vector<double>{3, 5, 1, 1});
+  const WallPatchStats buffer = SummarizeWall("hull", std::vector<double>{8, 60, 2, 20}, std::vector<double>{3, 5, 1, 1});
   EXPECT_DOUBLE_EQ(buffer.buffer_fraction, 0.3);
   const std::string w = YPlusWarning(buffer);
-  EXPECT_NE(w.find("WARNING: 30% of the area of 'hull' has a first-cell y+ between 2 and 20"),
-            std::string::npos)
-      << w;
+  EXPECT_NE(w.find("WARNING: 30% of the area of 'hull' has a first-cell y+ between 2 and 20"), std::string::npos) << w;
   EXPECT_EQ(w.find("or more"), std::string::npos) << w;  // nothing beyond y+ 300
-  const WallPatchStats edge =
-      SummarizeWall("hull", std::vector<double>{10, 60}, std::vector<double>{1, 9});
+  const WallPatchStats edge = SummarizeWall("hull", std::vector<double>{10, 60}, std::vector<double>{1, 9});
   EXPECT_DOUBLE_EQ(edge.buffer_fraction, 0.1);
   EXPECT_EQ(YPlusWarning(edge), "");
   // Both guards: one line each.
-  const WallPatchStats both =
-      SummarizeWall("hull", std::vector<double>{8, 500}, std::vector<double>{1, 1});
+  const WallPatchStats both = SummarizeWall("hull", std::vector<double>{8, 500}, std::vector<double>{1, 1});
   const std::string b = YPlusWarning(both);
   EXPECT_NE(b.find("or more"), std::string::npos) << b;
-  EXPECT_NE(b.find("\nWARNING: 50% of the area of 'hull' has a first-cell y+ between"),
-            std::string::npos)
-      << b;
+  EXPECT_NE(b.find("\nWARNING: 50% of the area of 'hull' has a first-cell y+ between"), std::string::npos) << b;
 }
 
 TEST(WallLaw, ViscousSublayerIsLinear) {
@@ -113,8 +102,8 @@ TEST(WallOmega, BlendsViscousAndLogValues) {
   const double nu = 1e-6, beta1 = 0.075, beta_star = 0.09, kappa = 0.41, u_tau = 0.05;
   // Deep in the sublayer the viscous value dominates, far out the log value.
   const double y_small = 0.1 * nu / u_tau, y_large = 1000 * nu / u_tau;
-  EXPECT_NEAR(WallOmega(y_small, u_tau, nu, kappa, beta1, beta_star),
-              6 * nu / (beta1 * y_small * y_small), 1e-3 * 6 * nu / (beta1 * y_small * y_small));
+  EXPECT_NEAR(WallOmega(y_small, u_tau, nu, kappa, beta1, beta_star), 6 * nu / (beta1 * y_small * y_small),
+              1e-3 * 6 * nu / (beta1 * y_small * y_small));
   const double log_value = u_tau / (std::sqrt(beta_star) * kappa * y_large);
   EXPECT_NEAR(WallOmega(y_large, u_tau, nu, kappa, beta1, beta_star), log_value, 1e-4 * log_value);
 }
@@ -206,8 +195,7 @@ TEST(WallDistance, ChannelIsExact) {
   o.kinds = {PatchKind::kPatch, PatchKind::kPatch, PatchKind::kWall,
              PatchKind::kWall,  PatchKind::kEmpty, PatchKind::kEmpty};
   const Mesh mesh = MakeBoxMesh(o);
-  const std::vector<double> d =
-      WallDistance(mesh, {mesh.FindPatch("ymin"), mesh.FindPatch("ymax")});
+  const std::vector<double> d = WallDistance(mesh, {mesh.FindPatch("ymin"), mesh.FindPatch("ymax")});
   for (int c = 0; c < mesh.n_cells(); ++c) {
     const double y = mesh.cell_centres()[c][1];
     const double h = 1.0 / 40;
@@ -229,8 +217,7 @@ TEST(FvMatrix, FaceDiffusivityMatchesUniformOne) {
   o.perturbation = 0.2;
   const Mesh mesh = MakeBoxMesh(o);
   std::vector<std::unique_ptr<BoundaryCondition<double>>> bcs;
-  for (std::size_t p = 0; p < mesh.patches().size(); ++p)
-    bcs.push_back(std::make_unique<FixedValue<double>>(1.0));
+  for (std::size_t p = 0; p < mesh.patches().size(); ++p) bcs.push_back(std::make_unique<FixedValue<double>>(1.0));
   ScalarField phi("phi", mesh, std::move(bcs));
   for (int c = 0; c < mesh.n_cells(); ++c) phi[c] = mesh.cell_centres()[c].squaredNorm();
   phi.CorrectBoundary(0.0, {});
@@ -256,8 +243,7 @@ TEST(FvMatrix, SetCellValuesFixesCellsAndKeepsTheRestConsistent) {
   o.cells = {11, 1, 1};
   const Mesh mesh = MakeBoxMesh(o);
   std::vector<std::unique_ptr<BoundaryCondition<double>>> bcs;
-  for (std::size_t p = 0; p < mesh.patches().size(); ++p)
-    bcs.push_back(std::make_unique<ZeroGradient<double>>());
+  for (std::size_t p = 0; p < mesh.patches().size(); ++p) bcs.push_back(std::make_unique<ZeroGradient<double>>());
   ScalarField phi("phi", mesh, std::move(bcs));
   phi.CorrectBoundary(0.0, {});
   FvMatrix<double> m(mesh);
