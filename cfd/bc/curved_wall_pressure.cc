@@ -66,26 +66,23 @@ void CurvedWallPressure::Update(const BcContext& ctx, std::span<const double>) {
   }
   const double dt = std::isnan(step_time_) ? 0.0 : ctx.time - step_time_;
   const Eigen::Matrix3d& r = ctx.mesh.placement_rotation();
-  capped_ = 0;
   for (int i = 0; i < patch.size; ++i) {
     const int f = patch.start + i;
+    const double dc = DeltaCoeff(ctx.mesh, f);
     if (!restored_ && !ctx.face_flux.empty()) {
       const Vector3 n = ctx.mesh.face_areas()[f] / ctx.mesh.face_area_magnitudes()[f];
       const Vector3 u = CellVelocityFromFluxes(ctx.mesh, ctx.face_flux, ctx.mesh.owner()[f]);
       const Vector3 ut = u - n * n.dot(u);
-      const double d = 1.0 / DeltaCoeff(ctx.mesh, f);
+      const double d = 1.0 / dc;
       double g = ut.dot(r * (body_shape_[i] * (r.transpose() * ut)));
       const double cap = 0.5 * ut.squaredNorm() / d;
-      if (std::abs(g) > cap) {
-        g = std::copysign(cap, g);
-        ++capped_;
-      }
+      if (std::abs(g) > cap) g = std::copysign(cap, g);
       const double speed = ut.norm();
       const double beta = speed > 0.0 ? 1.0 / (1.0 + dt * std::abs(g) / speed) : 1.0;
       g_[i] = g_step_[i] + beta * (g - g_step_[i]);
     }
     vi_[i] = 1.0;
-    vb_[i] = g_[i] / DeltaCoeff(ctx.mesh, f);
+    vb_[i] = g_[i] / dc;
     gi_[i] = 0.0;
     gb_[i] = g_[i];
   }

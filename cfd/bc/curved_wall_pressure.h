@@ -12,9 +12,9 @@
 // falls toward a convex wall by u_t^2 / R. This is the curvature-corrected
 // symmetry condition of Dadone and Grossman (AIAA J. 32, 1994), carried to
 // unstructured grids with a mesh-estimated curvature by Wang and Sun (AIAA
-// 2002-0966), here for an incompressible, cell-centred scheme. With the zero gradient the
-// wall cell feels about half the normal pressure gradient the turning flow
-// needs, and the scheme loses total pressure along a curved body (the
+// 2002-0966), here for an incompressible, cell-centred scheme. With the zero
+// gradient the wall cell feels about half the normal pressure gradient the
+// turning flow needs, and the scheme loses total pressure along a curved body (the
 // d'Alembert test, BENCHMARKS.md `dalembert`).
 //
 // The condition is Neumann with that gradient, explicit in the velocity:
@@ -23,9 +23,9 @@
 // tangential part of the owner cell's velocity, reconstructed from the face
 // fluxes of the cell (u_P = sum_f F_f (x_f - x_P) / V_P, exact for a uniform
 // flow), so the condition needs nothing but the flux the solver hands every
-// condition. S = grad_s n comes from cfd/bc/wall_curvature.h (zero at
-// sharp edges: no finite curvature to correct with). |g| d is capped at half the tangential
-// dynamic head u_t^2 / 2, past which the cell is too coarse for the wall's
+// condition. S = grad_s n comes from cfd/bc/wall_curvature.h (zero at sharp
+// edges: no finite curvature to correct with). |g| d is capped at half the
+// tangential dynamic head u_t^2 / 2, past which the cell is too coarse for the wall's
 // radius (kappa d > 1/2) and the Taylor step would overshoot.
 //
 // g is explicit in the velocity, and the wall cell's velocity answers a
@@ -66,24 +66,17 @@ class CurvedWallPressure : public BoundaryCondition<double> {
   std::string type() const override { return "curvedSlipWall"; }
   PatchRole role() const override { return PatchRole::kSymmetry; }
 
-  // S of each face in the body frame (x_E = R x_body + t: S_E = R S R^T).
-  const std::vector<Eigen::Matrix3d>& body_curvature() const { return body_shape_; }
-  // The normal gradient g of each face (m/s^2) and how many faces the cap
-  // limited, as of the last Update.
-  std::span<const double> normal_gradient() const { return gb_; }
-  int capped_faces() const { return capped_; }
   // [time of g, time of g^n, g per face, g^n per face] for checkpoints, the
   // faces those of the whole patch on every MPI rank (collective there).
   std::vector<double> State() const override;
   void SetState(std::span<const double> state) override;
 
  private:
-  std::vector<Eigen::Matrix3d> body_shape_;
+  std::vector<Eigen::Matrix3d> body_shape_;  // S of each face in the body frame (S_E = R S R^T)
   std::shared_ptr<const DomainPart> part_;  // set on ranks only
   std::vector<int> whole_index_;            // on ranks: each face's index in the whole patch
   std::vector<int> owner_;                  // on ranks: each face's local owner cell
   int whole_size_ = 0;
-  int capped_ = 0;
   std::vector<double> g_, g_step_;  // g as last computed, and as it was at the end of the last step
   double time_ = std::numeric_limits<double>::quiet_NaN();       // ctx.time of g_
   double step_time_ = std::numeric_limits<double>::quiet_NaN();  // time of g_step_

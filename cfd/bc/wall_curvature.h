@@ -6,8 +6,9 @@
 // S = -(I - n n) / R. At an edge of the surface (a normal that turns by more
 // than kEdgeAngle between neighbours) the faces across the edge are left out
 // of the fit: a sharp edge has no finite curvature. A tangent direction the
-// neighbours do not span (the empty direction of a 2D mesh) gets none. The pressure condition of
-// curved slip walls uses it (cfd/bc/curved_wall_pressure.h; docs/formulation.md section 4.6).
+// neighbours do not span (the empty direction of a 2D mesh) gets none. The
+// pressure condition of curved slip walls uses it
+// (cfd/bc/curved_wall_pressure.h; docs/formulation.md section 4.6).
 #pragma once
 
 #include <Eigen/Dense>
@@ -29,13 +30,12 @@ class WallCurvature {
   void Update(const Mesh& mesh, const Patch& patch);
   // S of the patch's face i (patch-local), as of the last Update.
   const Eigen::Matrix3d& shape(int i) const { return shape_[i]; }
-  const std::vector<Eigen::Matrix3d>& shapes() const { return shape_; }
 
  private:
   void BuildNeighbours(const Mesh& mesh, const Patch& patch);
 
-  std::vector<int> offsets_,
-      neighbours_;  // CSR: wall faces sharing a point with face i (patch-local)
+  // CSR: the wall faces sharing a point with face i (patch-local).
+  std::vector<int> offsets_, neighbours_;
   std::vector<Eigen::Matrix3d> shape_;
 };
 
