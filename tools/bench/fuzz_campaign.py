@@ -309,7 +309,10 @@ def fuzz(build, target, runs, seconds, work):
         "exec_s": stat("average_exec_per_sec"), "seconds": wall, "rss_mb": stat("peak_rss_mb"), "corpus": len(os.listdir(corpus)),
         "leaks": len(re.findall(r"ERROR: LeakSanitizer", log)),
         "ub": len(re.findall(r"runtime error:", log)),
-        "crashes": int(p.returncode != 0 and not re.search(r"ERROR: LeakSanitizer|runtime error:", log)),
+        # A run stopped from outside (SIGINT, SIGTERM) exits non-zero after "run interrupted": not a crash.
+        "crashes": int(p.returncode != 0 and not re.search(r"ERROR: LeakSanitizer|runtime error:|libFuzzer: run "
+                                                           r"interrupted", log)),
+        "interrupted": bool(re.search(r"libFuzzer: run interrupted", log)),
         "artifacts": new,
         "timeout": bool(re.search(r"ERROR: libFuzzer: timeout", log)),
     }
