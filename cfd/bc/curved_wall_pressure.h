@@ -83,8 +83,4 @@ class CurvedWallPressure : public BoundaryCondition<double> {
   bool restored_ = false;  // g_ comes from a checkpoint: use it as it is at its own time
 };
 
-// The velocity of cell c from the fluxes through its faces,
-// u = sum_f F_f (x_f - x_c) / V (F outward from c); exact for a uniform flow.
-Vector3 CellVelocityFromFluxes(const Mesh& mesh, std::span<const double> face_flux, int c);
-
 }  // namespace kelvin::cfd

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "cfd/fv/cell_velocity.h"
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
@@ -207,9 +208,12 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
   // across the partition) and keeps eta*_f and dt'_f of every face.
   std::vector<double>& known = eta_star_;
   std::vector<double> diag;
+  if (options_.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow) UpdateLocalFlow(ctx);
   AssembleKinematic(t, coupling.dt, bdf2, known, diag);
   for (int s = 0; s < surface_.size(); ++s) {
-    KELVIN_CHECK(diag[s] > 0.0, "positive free-surface diagonal");
+    // Non-finite (a diverging run): the elevation turns non-finite and the
+    // solver reports the divergence.
+    KELVIN_CHECK(diag[s] > 0.0 || !std::isfinite(diag[s]), "positive free-surface diagonal");
     dt_eff_[s] = 1.0 / diag[s];
     eta_star_[s] = dt_eff_[s] * known[s];
   }
@@ -228,6 +232,64 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
   Mixed<double>::Update(ctx, {});
 }
 
+void LinearizedFreeSurface::UpdateLocalFlow(const BcContext& ctx) {
+  KELVIN_CHECK(ctx.face_flux.size() == static_cast<std::size_t>(mesh_.n_faces()),
+               "the relative face fluxes for the local-flow free surface");
+  const Patch& patch = mesh_.patches()[patch_index_];
+  const std::size_t own = surface_face_.size();
+  std::vector<double> u(own), v(own);
+  for (std::size_t i = 0; i < own; ++i) {
+    const int f = patch.start + static_cast<int>(i);
+    const Vector3 c = CellVelocityFromFluxes(mesh_, ctx.face_flux, mesh_.owner()[f]);
+    u[i] = c.x();
+    v[i] = c.y();
+  }
+  const int n = surface_.size();
+  std::vector<double> all_u(n), all_v(n);
+  if (part_) {
+    const std::vector<double> gu = AllGather(*part_, u), gv = AllGather(*part_, v);
+    for (std::size_t k = 0; k < gu.size(); ++k) {
+      all_u[gathered_faces_[k]] = gu[k];
+      all_v[gathered_faces_[k]] = gv[k];
+    }
+  } else {
+    for (std::size_t i = 0; i < own; ++i) {
+      all_u[surface_face_[i]] = u[i];
+      all_v[surface_face_[i]] = v[i];
+    }
+  }
+  local_flow_.resize(n);
+  for (int i = 0; i < n; ++i) local_flow_[i] = Vector3(all_u[i], all_v[i], 0.0);
+  // Its gradient, to carry the face value to the rim edges.
+  std::vector<Vector3> gu, gv;
+  surface_.Gradient(all_u, gu);
+  surface_.Gradient(all_v, gv);
+  local_flow_gradient_.resize(n);
+  for (int i = 0; i < n; ++i) local_flow_gradient_[i] << gu[i].transpose(), gv[i].transpose(), Vector3::Zero().transpose();
+}
+
+Vector3 LinearizedFreeSurface::StreamAtFace(int i, double t) const {
+  if (options_.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow) return local_flow_[i];
+  return -options_.mesh_velocity(surface_.centres()[i], t);
+}
+
+Vector3 LinearizedFreeSurface::StreamAtEdge(std::size_t e, double t) const {
+  const auto& edge = surface_.edges()[e];
+  if (options_.linearization != LinearizedFreeSurfaceOptions::Linearization::kLocalFlow) {
+    return -options_.mesh_velocity(edge.centre, t);
+  }
+  if (edge.neighbour < 0) {
+    // On the rim, linear extrapolation from the face.
+    const int a = edge.face;
+    return local_flow_[a] + local_flow_gradient_[a] * (edge.centre - surface_.centres()[a]);
+  }
+  // Linear interpolation between the two face centres.
+  const double to_a = (edge.centre - surface_.centres()[edge.face]).norm();
+  const double to_b = (surface_.centres()[edge.neighbour] - edge.centre).norm();
+  const double w = to_b / (to_a + to_b);
+  return w * local_flow_[edge.face] + (1.0 - w) * local_flow_[edge.neighbour];
+}
+
 void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, std::vector<double>& known,
                                               std::vector<double>& diag) {
   const int n = surface_.size();
@@ -240,13 +302,23 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
     known[i] = bdf2 ? (2.0 * eta0[i] - 0.5 * eta_old_[1][i]) / dt : eta0[i] / dt;
     diag[i] = a_t / dt + mu_[i];
   }
-  // ... and the advection relative to the mesh, c = -u_b, in conservative
-  // form on the edges (flux q_e = c . n_e |e| out of edge.face).
-  if (options_.mesh_velocity) {
+  // ... and the advection relative to the mesh, c = -u_b or the local flow,
+  // in conservative form on the edges (flux q_e = c . n_e |e| out of
+  // edge.face).
+  if (options_.mesh_velocity || !local_flow_.empty()) {
     const auto& edges = surface_.edges();
     edge_flux_.resize(edges.size());
+    // The local flow does not cross a wall (the hull's waterline, where the
+    // uniform stream does and eta is extrapolated): no flux there. The
+    // extrapolated cell velocity would leave some, of either sign, and an
+    // inflow across the waterline lowers the implicit diagonal.
+    const bool local = options_.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
+    auto wall = [&](const PatchSurface::Edge& edge) {
+      return edge.neighbour < 0 && edge.rim_patch >= 0 && mesh_.patches()[edge.rim_patch].kind == PatchKind::kWall;
+    };
     for (std::size_t e = 0; e < edges.size(); ++e) {
-      edge_flux_[e] = -options_.mesh_velocity(edges[e].centre, t).dot(edges[e].normal);
+      const bool closed = local && edges[e].neighbour < 0 && (extrapolate_rim_[e] || wall(edges[e]));
+      edge_flux_[e] = closed ? 0.0 : StreamAtEdge(e, t).dot(edges[e].normal);
     }
     using Advection = LinearizedFreeSurfaceOptions::Advection;
     const bool second_order = options_.advection != Advection::kUpwind;
@@ -278,7 +350,7 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
       // The advection velocity at u, as a flux out of u across the edge (the
       // edge normal points out of edge.face, into its neighbour).
       const double out_of_u = u == edges[e].face ? 1.0 : -1.0;
-      const double q_at_u = -out_of_u * options_.mesh_velocity(surface_.centres()[u], t).dot(edges[e].normal);
+      const double q_at_u = out_of_u * StreamAtFace(u, t).dot(edges[e].normal);
       if (q_at_u * q_out_of_u <= 0.0) return 0.0;
       const double lud = grad_[u].dot(edges[e].centre - surface_.centres()[u]);
       if (!quick || d < 0) return lud;
@@ -295,6 +367,7 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
     // that ratio (about 1/cell width along a sloping stern waterline) and
     // diverges within a few steps at patch Courant numbers above about 2.
     waterline_fed_.assign(surface_.size(), 0);
+    inflow_.assign(surface_.size(), 0.0);
     for (std::size_t e = 0; e < edges.size(); ++e) {
       if (edges[e].neighbour < 0 && extrapolate_rim_[e] && edge_flux_[e] < 0.0) waterline_fed_[edges[e].face] = 1;
     }
@@ -317,6 +390,7 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
         // iterate.
         diag[up] += qa / area(up);
         known[down] += qa * eta_[up] / area(down);
+        inflow_[down] += qa / area(down);
         const double dc = qa * correction(e, up, down, qa);
         known[up] -= dc / area(up);
         known[down] += dc / area(down);
@@ -337,8 +411,16 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
     // kinematic_courant / dt, the time term becomes a_ff / kinematic_courant
     // (eta - eta^n), so that the lagged upstream coupling contracts by
     // C / (1 + C) per corrector. A steady state does not depend on it.
+    // Where the local flow converges (toward a stagnation point) the lagged
+    // inflow exceeds the outflow, eta grows at the rate of the difference
+    // (the eta div_h u_h part of the condition), and the rate is raised by
+    // it, so that the diagonal exceeds the inflow by the same margin.
+    const bool local = options_.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
     for (int i = 0; i < n; ++i) {
-      const double rate = (diag[i] - a_t / dt - mu_[i]) / options_.kinematic_courant;
+      const double outflow = diag[i] - a_t / dt - mu_[i];
+      const double rate = local && !inflow_.empty() && inflow_[i] > outflow
+                              ? inflow_[i] / options_.kinematic_courant + (inflow_[i] - outflow)
+                              : outflow / options_.kinematic_courant;
       if (rate <= a_t / dt) continue;
       known[i] +=
           rate * eta0[i] - (bdf2 ? (2.0 * eta0[i] - 0.5 * eta_old_[1][i]) / dt : eta0[i] / dt);

@@ -5,10 +5,24 @@
 // Dynamic condition:   p_f = g eta_f + p_a,f   (p kinematic, p_a an optional
 //                      applied surface pressure, e.g. a moving pressure patch)
 // Kinematic condition, on the 2D face mesh of the patch, relative to the mesh:
-//   d eta/dt + div_h(c eta) + mu eta = w,   c = -u_b,   w = F_f / |S_f|
-// where u_b is the velocity of the mesh through the still water (div_h c = 0
-// for rigid in-plane motion, so the conservative and the advective forms
-// agree) and mu >= 0 the damping of the beach.
+//   d eta/dt + div_h(c eta) + mu eta = w,   w = F_f / |S_f|
+// with mu >= 0 the damping of the beach and c the velocity that carries the
+// pattern relative to the mesh, by one of two linearizations:
+//  - uniform stream (Neumann-Kelvin, the default): c = -u_b, with u_b the
+//    velocity of the mesh through the still water (div_h c = 0 for rigid
+//    in-plane motion, so the conservative and the advective forms agree);
+//  - local flow (double-body or Dawson type): c = u_h, the horizontal flow
+//    velocity relative to the mesh in the cell under each face (the flow
+//    slows and turns about bow and stern). Linearizing the exact condition
+//    d eta/dt + u . grad_h eta = w on z = eta about a base flow that is
+//    symmetric about z = 0 (w = 0 and dp/dz = 0 there, as in the double
+//    body), w(eta) = w(0) + eta dw/dz = w(0) - eta div_h u_h by continuity,
+//    and the eta div_h u_h term joins the advection into the same
+//    conservative form div_h(u_h eta) (Dawson 1977; the consistent form as
+//    Raven 1996 states it). The dynamic condition is unchanged, since dp/dz
+//    of the base flow vanishes on z = 0. u_h is taken from the fluxes of the
+//    last corrector (lagged, like the upwind neighbours below), so a steady
+//    state solves the condition about its own flow.
 //
 // Time discretization (Euler or BDF2, following the solver) with implicit
 // first-order upwind advection; the neighbour values and the second-order
@@ -79,6 +93,10 @@ struct LinearizedFreeSurfaceOptions {
   // order where the advection direction reverses.
   enum class Advection { kUpwind, kLinearUpwind, kQuick };
   Advection advection = Advection::kLinearUpwind;
+  // The velocity that carries the pattern (see the top of this file):
+  // -u_b (uniform stream) or the local flow relative to the mesh.
+  enum class Linearization { kUniformStream, kLocalFlow };
+  Linearization linearization = Linearization::kUniformStream;
   // Clips the high-order face value of the linear-upwind and QUICK schemes
   // to the range of eta over the upwind face and its edge neighbours (a
   // Barth-Jespersen-type limiter). Added for hull grids, whose faces next to
@@ -99,7 +117,10 @@ struct LinearizedFreeSurfaceOptions {
   // Steady (pseudo-transient) runs only: caps the time step of the
   // kinematic condition per face at kinematic_courant times the advection
   // time across the face (local time stepping). It leaves a converged steady
-  // state unchanged but makes transients non-physical. 0 = off.
+  // state unchanged but makes transients non-physical. 0 = off. With the
+  // local flow, a face where the flow converges (more lagged inflow than
+  // outflow, toward a stagnation point) also gets the difference, so that its
+  // diagonal exceeds the inflow (docs/formulation.md section 3.7).
   double kinematic_courant = 0.0;
 
   // Damping beach: mu(x) = mu_max s(1 - d/W), with d the distance to the
@@ -181,6 +202,12 @@ class LinearizedFreeSurface : public Mixed<double> {
   void AdvanceTime(double time);
   // Face value of the applied pressure at time t (surface face i).
   double SurfacePressure(int i, double time) const;
+  // Local flow: the horizontal velocity relative to the mesh under every
+  // surface face (all ranks' faces), from the relative fluxes of ctx.
+  void UpdateLocalFlow(const BcContext& ctx);
+  // The advecting velocity c at surface face i and at edge e.
+  Vector3 StreamAtFace(int i, double t) const;
+  Vector3 StreamAtEdge(std::size_t e, double t) const;
   // The known part eta*_f and the implicit diagonal of every surface face
   // (the advection, the beach and the local pseudo-time included).
   void AssembleKinematic(double t, double dt, bool bdf2, std::vector<double>& known, std::vector<double>& diag);
@@ -197,6 +224,8 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::vector<int> gathered_faces_;
   std::vector<char> extrapolate_rim_;  // per edge: inflow extrapolates eta (waterline)
   std::vector<double> mu_;
+  std::vector<Vector3> local_flow_;               // per surface face (local-flow linearization)
+  std::vector<Eigen::Matrix3d> local_flow_gradient_;  // its in-plane gradient per face
   std::vector<double> eta_;
   std::vector<std::vector<double>> eta_old_;  // eta^n, eta^{n-1}
   double time_ = 0.0;
@@ -211,6 +240,7 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::vector<double> edge_flux_;
   std::vector<double> eta_min_, eta_max_;  // limiter range per face
   std::vector<char> waterline_fed_;       // per face: inflow across the hull waterline (first order)
+  std::vector<double> inflow_;            // per face: the lagged upwind inflow rate (1/s)
 };
 
 }  // namespace kelvin::cfd

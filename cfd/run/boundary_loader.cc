@@ -13,8 +13,9 @@
 namespace kelvin::cfd {
 namespace {
 
-// p: {type: linearizedFreeSurface, g, mesh_velocity, advection, beach: {width, strength, sides},
-// waterline_patches, pressure_patch: {centre, radius, head}, kinematic_courant, limit_advection} on a patch in z = 0 (see cfd/freesurface/linearized_free_surface.h).
+// p: {type: linearizedFreeSurface, g, mesh_velocity, advection, linearization, beach: {width, strength, sides},
+// waterline_patches, pressure_patch: {centre, radius, head}, kinematic_courant, limit_advection} on a patch in z = 0
+// (see cfd/freesurface/linearized_free_surface.h).
 // With a motion: section the mesh velocity is the rigid-body velocity of the
 // moving grid, u_b = V + Omega x (x - c), in the earth frame the patch
 // geometry is placed in each step (the kinematic condition advects eta
@@ -23,8 +24,8 @@ namespace {
 std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, const Mesh& mesh, int patch,
                                                            const RigidMeshMotion* motion,
                                                            const FreeSurfaceOnRanks& ranks) {
-  n.ExpectKeys({"type", "g", "mesh_velocity", "advection", "beach", "waterline_patches", "pressure_patch",
-                "kinematic_courant", "limit_advection"});
+  n.ExpectKeys({"type", "g", "mesh_velocity", "advection", "linearization", "beach", "waterline_patches",
+                "pressure_patch", "kinematic_courant", "limit_advection"});
   LinearizedFreeSurfaceOptions o;
   o.limit_advection = n.Get<bool>("limit_advection", false);
   if (n.Has("g")) o.g = n.GetPositive("g");
@@ -43,6 +44,10 @@ std::unique_ptr<BoundaryCondition<double>> LoadFreeSurface(const ConfigNode& n, 
                         {{"upwind", Advection::kUpwind},
                          {"linear_upwind", Advection::kLinearUpwind},
                          {"quick", Advection::kQuick}});
+  using Linearization = LinearizedFreeSurfaceOptions::Linearization;
+  o.linearization = GetEnum(n, "linearization", o.linearization,
+                            {{"uniform_stream", Linearization::kUniformStream},
+                             {"local_flow", Linearization::kLocalFlow}});
   if (n.Has("kinematic_courant")) o.kinematic_courant = n.GetPositive("kinematic_courant");
   if (n.Has("beach")) {
     const ConfigNode b = n["beach"];

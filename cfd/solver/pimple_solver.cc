@@ -267,10 +267,12 @@ void PimpleSolver::PressureCorrector(double dt, bool final_corrector, double alp
   FluxHbyA(dt, backward, alpha_U, U_prev, phi_prev, rAU, HbyA, rAUf, phi_HbyA);
 
   // Conditions with their own unknowns (the free surface) turn the predicted
-  // boundary flux into implicit pressure coefficients.
+  // boundary flux into implicit pressure coefficients; the context carries
+  // the last corrector's flux relative to the mesh.
   const PressureCoupling coupling{dt, backward, rAUf, phi_HbyA};
+  const std::span<const double> flux_rel = RelativeFlux();
   for (int p = 0; p < p_->n_patches(); ++p) {
-    p_->bc(p).PreparePressureSolve(BcContext{mesh_, mesh_.patches()[p], time_, phi_}, coupling);
+    p_->bc(p).PreparePressureSolve(BcContext{mesh_, mesh_.patches()[p], time_, flux_rel}, coupling);
   }
 
   std::vector<double> p_before(p_->values());

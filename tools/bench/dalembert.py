@@ -32,6 +32,7 @@ import numpy as np
 import yaml
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from case_variants import variant_case  # noqa: E402
 from pimple_vs_openfoam import write_or_print  # noqa: E402
 
 NAME = "dalembert"
@@ -73,20 +74,9 @@ def wall_cp(run_dir):
                 fore=float(drag[fore].sum()), aft=float(drag[~fore].sum()))
 
 
-def variant_case(work, name, overrides):
-    """The case with `overrides` (a YAML mapping of dotted keys, e.g. `{schemes.convection: lust}`) set; None: as
-    it is."""
-    with open(CASE) as f:
-        case = yaml.safe_load(f.read().replace("../../../", ROOT + "/"))
-    for key, value in (yaml.safe_load(overrides) if overrides else {}).items():
-        node, *path = case, *key.split(".")
-        for k in path[:-1]:
-            node = node[k]
-        node[path[-1]] = value
-    path = os.path.join(work, f"case_{name}.yaml")
-    with open(path, "w") as f:
-        yaml.safe_dump(case, f, sort_keys=False)
-    return path
+def variant(work, name, overrides):
+    """The case with `overrides` (dotted keys) set, in `work`."""
+    return variant_case(CASE, os.path.join(work, f"case_{name}.yaml"), overrides)
 
 
 def viscous_rt(kelvin, work):
@@ -126,7 +116,7 @@ def main():
     tables = []
     for name, overrides in variants:
         runs = os.path.join(args.work, name)
-        run([args.kelvin, "gci", variant_case(args.work, name, overrides), "--grids", args.grids, "--outputs", "C_P",
+        run([args.kelvin, "gci", variant(args.work, name, overrides), "--grids", args.grids, "--outputs", "C_P",
              "--runs", runs, "--rerun", "--no-progress",
              # the base cells are whole numbers per length (20, 14, 10), so the ratios differ by 5.4%
              "--ratio-tolerance", "0.1"], os.path.join(args.work, f"gci_{name}.log"))

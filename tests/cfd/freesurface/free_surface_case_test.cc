@@ -67,6 +67,31 @@ std::vector<double> FreeSurfaceState(const fs::path& checkpoint) {
   return r.Read("bc/11").values;
 }
 
+// The free-surface state at t = 1 in `straight` (a run straight to t = 1 of
+// text(1)) against t = 0.5 plus a restart to t = 1: identical bits.
+template <typename Text>
+void ExpectRestartBitForBit(const fs::path& straight_checkpoint, Text&& text) {
+  RunOptions o;
+  o.progress = false;
+  const std::vector<double> straight = FreeSurfaceState(straight_checkpoint);
+  kelvin::testing::ScopedTempDir tmp2;
+  RunCase(WriteCase(tmp2.path(), text(0.5)), o);
+  RunOptions restart = o;
+  restart.restart = tmp2 / "out" / "checkpoint.h5";
+  restart.output_override = tmp2 / "out2";
+  const RunSummary s2 = RunCase(WriteCase(tmp2.path(), text(1.0)), restart);
+  ASSERT_EQ(s2.status, RunSummary::Status::kCompleted) << s2.message;
+  EXPECT_EQ(s2.steps, 2);
+  const std::vector<double> restarted = FreeSurfaceState(tmp2 / "out2" / "checkpoint.h5");
+  ASSERT_EQ(straight.size(), restarted.size());
+  double max_eta = 0.0;
+  for (std::size_t i = 0; i < straight.size(); ++i) {
+    EXPECT_EQ(straight[i], restarted[i]) << "state value " << i;
+    if (i >= 3 && i < 3 + 200) max_eta = std::max(max_eta, std::abs(straight[i]));
+  }
+  EXPECT_GT(max_eta, 1e-4);  // the pressure patch makes waves
+}
+
 TEST(FreeSurfaceCase, RunWritesEtaOnThePatchAndRestartsBitForBit) {
   kelvin::testing::ScopedTempDir tmp;
   RunOptions o;
@@ -85,24 +110,25 @@ TEST(FreeSurfaceCase, RunWritesEtaOnThePatchAndRestartsBitForBit) {
   pvd << std::ifstream(tmp / "out" / "zmax.pvd").rdbuf();
   EXPECT_NE(pvd.str().find("zmax_000002.vtp"), std::string::npos);
 
-  // Straight to t = 1 against t = 0.5 plus a restart to t = 1.
-  const std::vector<double> straight = FreeSurfaceState(tmp / "out" / "checkpoint.h5");
-  kelvin::testing::ScopedTempDir tmp2;
-  RunCase(WriteCase(tmp2.path(), CaseText(0.5)), o);
-  RunOptions restart = o;
-  restart.restart = tmp2 / "out" / "checkpoint.h5";
-  restart.output_override = tmp2 / "out2";
-  const RunSummary s2 = RunCase(WriteCase(tmp2.path(), CaseText(1.0)), restart);
-  ASSERT_EQ(s2.status, RunSummary::Status::kCompleted) << s2.message;
-  EXPECT_EQ(s2.steps, 2);
-  const std::vector<double> restarted = FreeSurfaceState(tmp2 / "out2" / "checkpoint.h5");
-  ASSERT_EQ(straight.size(), restarted.size());
-  double max_eta = 0.0;
-  for (std::size_t i = 0; i < straight.size(); ++i) {
-    EXPECT_EQ(straight[i], restarted[i]) << "state value " << i;
-    if (i >= 3 && i < 3 + 200) max_eta = std::max(max_eta, std::abs(straight[i]));
-  }
-  EXPECT_GT(max_eta, 1e-4);  // the pressure patch makes waves
+  ExpectRestartBitForBit(tmp / "out" / "checkpoint.h5", [](double end) { return CaseText(end); });
+}
+
+// The local-flow linearization reads the flow under the surface from the
+// fluxes, which the checkpoint holds: its restart is bit for bit as well.
+TEST(FreeSurfaceCase, LocalFlowRunRestartsBitForBit) {
+  auto text = [](double end) {
+    return Replace(CaseText(end), "      advection: quick\n", "      advection: quick\n      linearization: local_flow\n");
+  };
+  kelvin::testing::ScopedTempDir tmp;
+  RunOptions o;
+  o.progress = false;
+  const RunSummary s = RunCase(WriteCase(tmp.path(), text(1.0)), o);
+  ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+  ExpectRestartBitForBit(tmp / "out" / "checkpoint.h5", text);
+}
+
+TEST(FreeSurfaceCase, UnknownLinearizationIsAnError) {
+  ExpectCaseConfigError(Replace(CaseText(), "      advection: quick\n", "      linearization: dawson\n"), "dawson");
 }
 
 TEST(FreeSurfaceCase, NegativeGravityIsAnError) {

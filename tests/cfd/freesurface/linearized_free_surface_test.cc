@@ -1,8 +1,9 @@
 // Unit tests of the linearized free surface: the 2D face mesh of the patch,
 // the Robin coefficients of the implicit gravity-wave coupling and the
 // elevation update (Euler and BDF2), the kinematic advection on the patch,
-// the beach, checkpoint state, the rigid-lid start, the first-order faces
-// behind a hull waterline, and the errors for a patch off z = 0.
+// the local-flow linearization, the beach, checkpoint state, the rigid-lid
+// start, the first-order faces behind a hull waterline, and the errors for a
+// patch off z = 0.
 #include "cfd/freesurface/linearized_free_surface.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <random>
 
@@ -358,6 +360,111 @@ TEST(LinearizedFreeSurface, AdvectionIsTheSameInBothDirections) {
     EXPECT_LT(worst, 1e-12);
     EXPECT_GT(peak(backward), first_order + 0.05);
   }
+}
+
+// The local-flow linearization (double-body type): eta is carried by the
+// flow under the surface, u = (U0 + a x, 0, -a z) (solenoidal, slowing the
+// surface stream at x = 0 and speeding it up downstream), with a uniform rise
+// w0 through the surface and calm water coming in at x = 0. The steady
+// condition div_h(u_h eta) = w0 gives u_h eta = w0 x: eta = w0 x / (U0 + a x).
+// First-order upwinding in conservative form telescopes to that value at each
+// face's outflow edge, exactly; the advective form u . grad eta = w0 would
+// give (w0 / a) ln(1 + a x / U0) instead (2.20 w0 at x = 4 against 1.33 w0),
+// and the uniform stream w0 x / U0 (4 w0). Linear upwinding converges to the
+// analytic value at the face centres.
+struct SteadyStream {
+  explicit SteadyStream(int n = 40) : mesh(Box({n, 2, 2}, false, Vector3(0, 0, -0.2), Vector3(4, 0.2, 0))) {}
+  Mesh mesh;
+  static constexpr double kU0 = 1.0, kA = 0.5, kW0 = 0.01;
+  // Fluxes of the flow through every face (exact for the linear field on planar faces).
+  std::vector<double> Flow(double a) const {
+    std::vector<double> flux(mesh.n_faces());
+    for (int f = 0; f < mesh.n_faces(); ++f) {
+      const Vector3& x = mesh.face_centres()[f];
+      flux[f] = Vector3(kU0 + a * x.x(), 0.0, -a * x.z()).dot(mesh.face_areas()[f]);
+    }
+    return flux;
+  }
+  // The steady elevation of `o` with the flow of `flow` under the surface.
+  std::vector<double> Eta(const LinearizedFreeSurfaceOptions& o, const std::vector<double>& flow, LinearizedFreeSurface** out = nullptr) {
+    const int top = mesh.FindPatch("zmax");
+    const Patch& patch = mesh.patches()[top];
+    LinearizedFreeSurfaceOptions capped = o;
+    capped.kinematic_courant = 2.0;  // leaves the steady state as it is (docs/formulation.md section 3.7)
+    bc = std::make_unique<LinearizedFreeSurface>(mesh, top, capped);
+    const std::vector<double> zero(mesh.n_faces(), 0.0);
+    std::vector<double> rise(mesh.n_faces(), 0.0);
+    for (int f = patch.start; f < patch.start + patch.size; ++f) rise[f] = kW0 * mesh.face_area_magnitudes()[f];
+    bc->Update(BcContext{mesh, patch, 0.0, flow}, {});
+    const double dt = 1.0;
+    for (int step = 1; step <= 100; ++step) {
+      const BcContext ctx{mesh, patch, step * dt, flow};
+      bc->Update(ctx, {});
+      for (int it = 0; it < 40; ++it) {
+        bc->PreparePressureSolve(ctx, PressureCoupling{dt, false, zero, zero});
+        bc->CorrectAfterFlux(ctx, rise);
+      }
+    }
+    if (out) *out = bc.get();
+    return bc->eta();
+  }
+  std::unique_ptr<LinearizedFreeSurface> bc;
+};
+
+TEST(LinearizedFreeSurface, LocalFlowCarriesEtaWithTheStreamUnderTheSurface) {
+  SteadyStream s;
+  using Advection = LinearizedFreeSurfaceOptions::Advection;
+  using Linearization = LinearizedFreeSurfaceOptions::Linearization;
+  LinearizedFreeSurfaceOptions o;
+  o.linearization = Linearization::kLocalFlow;
+  o.advection = Advection::kUpwind;
+  LinearizedFreeSurface* bc = nullptr;
+  const std::vector<double> eta = s.Eta(o, s.Flow(SteadyStream::kA), &bc);
+  const double dx = 4.0 / 40;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < eta.size(); ++i) {
+    const double x_out = bc->surface().centres()[i].x() + 0.5 * dx;
+    worst = std::max(worst, std::abs(eta[i] - SteadyStream::kW0 * x_out / (SteadyStream::kU0 + SteadyStream::kA * x_out)));
+  }
+  std::printf("first-order upwind: largest difference from w0 x_e / u(x_e) at the outflow edges %.2e (eta at the "
+              "outlet %.5f, w0 %.2f)\n", worst, *std::max_element(eta.begin(), eta.end()), SteadyStream::kW0);
+  EXPECT_LT(worst, 1e-12);
+
+  // Linear upwind at the face centres: second order (the error of the
+  // inflow face, first order there, is carried downstream at second order).
+  o.advection = Advection::kLinearUpwind;
+  std::array<double, 2> error{};
+  for (int k = 0; k < 2; ++k) {
+    SteadyStream grid(40 << k);
+    const std::vector<double> eta2 = grid.Eta(o, grid.Flow(SteadyStream::kA), &bc);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < eta2.size(); ++i) {
+      const double x = bc->surface().centres()[i].x();
+      sum += std::pow(eta2[i] - SteadyStream::kW0 * x / (SteadyStream::kU0 + SteadyStream::kA * x), 2);
+    }
+    error[k] = std::sqrt(sum / eta2.size());
+  }
+  const double order = std::log2(error[0] / error[1]);
+  std::printf("linear upwind: RMS error %.3e (40 faces along), %.3e (80): order %.2f\n", error[0], error[1], order);
+  EXPECT_GT(order, 1.8);
+}
+
+// In a uniform stream the two linearizations are the same condition: the
+// local flow of a mesh at rest in the stream U0 gives the elevation of the
+// uniform-stream form with the mesh moving at -U0 through still water.
+TEST(LinearizedFreeSurface, LocalFlowInAUniformStreamIsTheUniformStreamForm) {
+  SteadyStream s;
+  using Linearization = LinearizedFreeSurfaceOptions::Linearization;
+  LinearizedFreeSurfaceOptions local;
+  local.linearization = Linearization::kLocalFlow;
+  const std::vector<double> a = s.Eta(local, s.Flow(0.0));
+  LinearizedFreeSurfaceOptions uniform;
+  uniform.mesh_velocity = [](const Vector3&, double) { return Vector3(-SteadyStream::kU0, 0.0, 0.0); };
+  const std::vector<double> b = s.Eta(uniform, std::vector<double>(s.mesh.n_faces(), 0.0));
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+  EXPECT_LT(worst, 1e-14);
+  EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.039);  // w0 L / U0 = 0.04, less half a face
 }
 
 TEST(LinearizedFreeSurface, BeachRampsToItsMaximumAtTheChosenSides) {

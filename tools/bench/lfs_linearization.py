@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""Benchmark: the two linearizations of the free-surface kinematic condition side by side (issue #22,
+acceptance 2 and 3; docs/formulation.md section 3.1).
+
+On the same grid and at the same speed, `kelvin run` of
+  - the double body (the free surface a rigid lid: R_P(db));
+  - the linearized free surface carried by the uniform stream (-u_b, Neumann-Kelvin: the case as shipped);
+  - the same with `linearization: local_flow` (carried by the flow under the surface, double-body type);
+for the DTC at 1.668 m/s (data/cases/resistance/dtc_lfs.yaml, dtc_double_body.yaml; measured R_T 31.83 N and
+wave part R_T - R_T(double body, measured) 2.91 N, el Moctar, Shigunov & Zorn 2012) and the 6 m Wigley at
+Fn 0.316 (wigley_fn0316.yaml, wigley_double_body.yaml; C_W against Michell's thin-ship value). The wave part is
+R_W = R_P - R_P(db) on the same grid. Writes the section `lfs_linearization` of BENCHMARKS.md.
+
+The grids are expected under --grids (kelvin mesh data/cases/resistance/dtc_mesh.yaml and wigley_mesh.yaml).
+
+Usage: tools/bench/lfs_linearization.py [--kelvin build/ci/tools/kelvin] [--hulls dtc,wigley] [--report-only]
+       [--write] [--results DIR]
+"""
+import argparse
+import datetime
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from case_variants import ROOT, variant_case  # noqa: E402
+from lfs_resistance_bench import DTC_RT_EXP, failure, michell_cw, read  # noqa: E402
+from pimple_vs_openfoam import write_or_print  # noqa: E402
+
+NAME = "lfs_linearization"
+CASES = os.path.join(ROOT, "data", "cases", "resistance")
+LOCAL = {"boundary.freeSurface.p.linearization": "local_flow"}
+# Per hull: the runs (label, case, overrides), the double body first.
+RUNS = {
+    "dtc": [("dtc_double_body", "dtc_double_body", None), ("dtc_lfs", "dtc_lfs", None),
+            ("dtc_lfs_local", "dtc_lfs", LOCAL)],
+    "wigley": [("wigley_double_body", "wigley_double_body", None), ("wigley_fn0316", "wigley_fn0316", None),
+               ("wigley_fn0316_local", "wigley_fn0316", LOCAL)],
+}
+DTC_RW_EXP = 2.91  # measured R_T less the measured double-body resistance (issue #22)
+
+
+def run(kelvin, label, case, overrides, results):
+    out = os.path.join(results, label)
+    path = variant_case(os.path.join(CASES, case + ".yaml"), os.path.join(out, "case.yaml"), overrides)
+    env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
+    with open(os.path.join(out, "run.log"), "w") as log:
+        rc = subprocess.call(["nice", kelvin, "run", path, "-o", out, "--no-progress"], stdout=log,
+                             stderr=subprocess.STDOUT, env=env)
+    if rc != 0:
+        print(f"{label}: kelvin run exited with {rc} (see {out}/run.log)", file=sys.stderr)
+
+
+def section(rows, results):
+    by = {r["name"]: r for r in rows}
+    lines = ["## lfs_linearization: the kinematic condition's two linearizations side by side (issue #22, "
+             "acceptance 2 and 3)\n",
+             f"Written by `tools/bench/lfs_linearization.py` on {datetime.date.today()}: on one grid per hull, the "
+             "double body and the free surface with each linearization of the kinematic condition "
+             "(docs/formulation.md section 3.1): `uniform_stream` (the pattern carried by -u_b) and `local_flow` "
+             "(carried by the flow under the surface). R_W = R_P - R_P(double body). Cases as shipped otherwise "
+             "(k-omega SST with wall functions, rigid-lid start, pseudo-transient to the steady criterion). "
+             "Serial, under `nice`, beside other work on the 2-core machine.\n",
+             "| run | linearization | R_T (N) | R_F (N) | R_P (N) | R_W (N) | C_T | C_W | C_W / reference | "
+             "converged | steps | CPU s |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for hull, runs in RUNS.items():
+        db = by.get(runs[0][0])
+        for label, _, overrides in runs:
+            r = by.get(label)
+            if not r:
+                lines.append(f"| {label} | | {failure(label, results) or 'not run'} | | | | | | | | | |")
+                continue
+            lin = "double body" if label == runs[0][0] else ("local_flow" if overrides else "uniform_stream")
+            rw = cw = ref = ""
+            if db and r is not db:
+                rw = f"{r['R_P'] - db['R_P']:+.3f}"
+                c_w = r["C_P"] - db["C_P"]
+                cw = f"{c_w:.3e}"
+                ref = (f"{(r['R_P'] - db['R_P']) / DTC_RW_EXP:.2f} of the measured {DTC_RW_EXP} N" if hull == "dtc"
+                       else f"{c_w / michell_cw(0.316):.2f} of Michell")
+            lines.append(f"| {label} | {lin} | {r['R_T']:.3f} | {r['R_F']:.3f} | {r['R_P']:.3f} | {rw} | "
+                         f"{r['C_T']:.4e} | {cw} | {ref} | {'yes' if r['converged'] == 1 else '**no**'} | "
+                         f"{r['steps']} | {r['cpu']:.0f} |")
+    dtc = by.get("dtc_lfs_local")
+    if dtc:
+        lines.append(f"\nDTC R_T with the local flow: {dtc['R_T']:.3f} N, {dtc['R_T'] / DTC_RT_EXP:.3f} of the measured "
+                     f"{DTC_RT_EXP} N (el Moctar, Shigunov & Zorn 2012).")
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--kelvin", default=os.path.join(ROOT, "build", "ci", "tools", "kelvin"))
+    ap.add_argument("--results", default=os.path.join(ROOT, "build", "bench", NAME))
+    ap.add_argument("--grids", default=os.path.join(ROOT, "build", "grids"))
+    ap.add_argument("--hulls", default="dtc,wigley")
+    ap.add_argument("--report-only", action="store_true")
+    ap.add_argument("--write", nargs="?", const=os.path.join(ROOT, "BENCHMARKS.md"), default=None,
+                    help="write the section into this file (default BENCHMARKS.md)")
+    args = ap.parse_args()
+    hulls = [h for h in args.hulls.split(",") if h]
+    for h in hulls:
+        if h not in RUNS:
+            raise SystemExit(f"--hulls: {h!r}; expected some of {', '.join(RUNS)}")
+    if not args.report_only:
+        for h in hulls:
+            for label, case, overrides in RUNS[h]:
+                run(args.kelvin, label, case, overrides, args.results)
+    rows = [r for runs in RUNS.values() for label, _, _ in runs
+            if (r := read(label, args.results, args.grids)) is not None]
+    write_or_print(args.write, NAME, section(rows, args.results))
+
+
+if __name__ == "__main__":
+    main()
