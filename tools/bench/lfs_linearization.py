@@ -19,12 +19,11 @@ Usage: tools/bench/lfs_linearization.py [--kelvin build/ci/tools/kelvin] [--hull
 import argparse
 import datetime
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from case_variants import ROOT, variant_case  # noqa: E402
-from lfs_resistance_bench import DTC_RT_EXP, failure, michell_cw, read  # noqa: E402
+from lfs_resistance_bench import DTC_RT_EXP, failure, michell_cw, read, run_case  # noqa: E402
 from pimple_vs_openfoam import write_or_print  # noqa: E402
 
 NAME = "lfs_linearization"
@@ -41,14 +40,8 @@ DTC_RW_EXP = 2.91  # measured R_T less the measured double-body resistance (issu
 
 
 def run(kelvin, label, case, overrides, results):
-    out = os.path.join(results, label)
-    path = variant_case(os.path.join(CASES, case + ".yaml"), os.path.join(out, "case.yaml"), overrides)
-    env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
-    with open(os.path.join(out, "run.log"), "w") as log:
-        rc = subprocess.call(["nice", kelvin, "run", path, "-o", out, "--no-progress"], stdout=log,
-                             stderr=subprocess.STDOUT, env=env)
-    if rc != 0:
-        print(f"{label}: kelvin run exited with {rc} (see {out}/run.log)", file=sys.stderr)
+    path = variant_case(os.path.join(CASES, case + ".yaml"), os.path.join(results, label, "case.yaml"), overrides)
+    run_case(kelvin, label, results, path)
 
 
 def section(rows, results):

@@ -75,8 +75,9 @@ def n_cells(poly_mesh):
     raise SystemExit(f"no nCells in {poly_mesh}/owner")
 
 
-def run_case(kelvin, name, results):
-    case = os.path.join(CASES, name + ".yaml")
+def run_case(kelvin, name, results, case=None):
+    """`kelvin run` of the case file `case` (default: the shipped case `name`) into <results>/<name>."""
+    case = case or os.path.join(CASES, name + ".yaml")
     out = os.path.join(results, name)
     os.makedirs(out, exist_ok=True)
     env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
