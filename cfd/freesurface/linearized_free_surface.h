@@ -18,11 +18,12 @@
 //    symmetric about z = 0 (w = 0 and dp/dz = 0 there, as in the double
 //    body), w(eta) = w(0) + eta dw/dz = w(0) - eta div_h u_h by continuity,
 //    and the eta div_h u_h term joins the advection into the same
-//    conservative form div_h(u_h eta) (Dawson 1977; the consistent form as
-//    Raven 1996 states it). The dynamic condition is unchanged, since dp/dz
-//    of the base flow vanishes on z = 0. u_h is taken from the fluxes of the
-//    last corrector (lagged, like the upwind neighbours below), so a steady
-//    state solves the condition about its own flow.
+//    conservative form div_h(u_h eta) (Dawson 1977; the consistency of such
+//    linearizations is discussed by Raven 1996). The dynamic condition is
+//    unchanged, since dp/dz of the base flow vanishes on z = 0. u_h is taken
+//    from the fluxes of the last corrector (lagged, like the upwind
+//    neighbours below), so a steady state solves the condition about its own
+//    flow.
 //
 // Time discretization (Euler or BDF2, following the solver) with implicit
 // first-order upwind advection; the neighbour values and the second-order
