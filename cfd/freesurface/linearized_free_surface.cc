@@ -12,6 +12,13 @@
 #include "data/schema/errors.h"
 
 namespace kelvin::cfd {
+namespace {
+
+bool LocalFlow(const LinearizedFreeSurfaceOptions& o) {
+  return o.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
+}
+
+}  // namespace
 
 void LinearizedFreeSurfaceOptions::Validate() const {
   if (!(g > 0.0) || !std::isfinite(g))
@@ -208,7 +215,7 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
   // across the partition) and keeps eta*_f and dt'_f of every face.
   std::vector<double>& known = eta_star_;
   std::vector<double> diag;
-  if (options_.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow) UpdateLocalFlow(ctx);
+  if (LocalFlow(options_)) UpdateLocalFlow(ctx);
   AssembleKinematic(t, coupling.dt, bdf2, known, diag);
   for (int s = 0; s < surface_.size(); ++s) {
     // Non-finite (a diverging run): the elevation turns non-finite and the
@@ -269,13 +276,13 @@ void LinearizedFreeSurface::UpdateLocalFlow(const BcContext& ctx) {
 }
 
 Vector3 LinearizedFreeSurface::StreamAtFace(int i, double t) const {
-  if (options_.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow) return local_flow_[i];
+  if (LocalFlow(options_)) return local_flow_[i];
   return -options_.mesh_velocity(surface_.centres()[i], t);
 }
 
 Vector3 LinearizedFreeSurface::StreamAtEdge(std::size_t e, double t) const {
   const auto& edge = surface_.edges()[e];
-  if (options_.linearization != LinearizedFreeSurfaceOptions::Linearization::kLocalFlow) {
+  if (!LocalFlow(options_)) {
     return -options_.mesh_velocity(edge.centre, t);
   }
   if (edge.neighbour < 0) {
@@ -312,7 +319,7 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
     // uniform stream does and eta is extrapolated): no flux there. The
     // extrapolated cell velocity would leave some, of either sign, and an
     // inflow across the waterline lowers the implicit diagonal.
-    const bool local = options_.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
+    const bool local = LocalFlow(options_);
     auto wall = [&](const PatchSurface::Edge& edge) {
       return edge.neighbour < 0 && edge.rim_patch >= 0 && mesh_.patches()[edge.rim_patch].kind == PatchKind::kWall;
     };
@@ -415,7 +422,7 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
     // inflow exceeds the outflow, eta grows at the rate of the difference
     // (the eta div_h u_h part of the condition), and the rate is raised by
     // it, so that the diagonal exceeds the inflow by the same margin.
-    const bool local = options_.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
+    const bool local = LocalFlow(options_);
     for (int i = 0; i < n; ++i) {
       const double outflow = diag[i] - a_t / dt - mu_[i];
       const double rate = local && !inflow_.empty() && inflow_[i] > outflow
