@@ -18,6 +18,47 @@ bool LocalFlow(const LinearizedFreeSurfaceOptions& o) {
   return o.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
 }
 
+// Appends to `out` the horizontal velocity out of surface face s across each
+// of its edges (face_edges order), from the relative flux through the side of
+// the cell under it: the other face g of that cell that holds the edge (in a
+// closed cell every edge of a face is shared by exactly one other face of
+// the cell). u_n = F_g / (S_g . n_e), with the projected area bounded below
+// by half of |S_g| for a face that leans toward the plane. These velocities
+// obey the cell's own continuity: no flux crosses a wall, and the divergence
+// of the edge fluxes is the vertical outflow of the cell per unit height.
+void SideVelocities(const Mesh& mesh, std::span<const double> flux, int f, const PatchSurface& surface, int s,
+                    std::vector<double>& out) {
+  const int c = mesh.owner()[f];
+  const auto points = mesh.face(f);
+  const std::span<const int> cell = mesh.cell_faces().subspan(
+      static_cast<std::size_t>(mesh.cell_face_offsets()[c]),
+      static_cast<std::size_t>(mesh.cell_face_offsets()[c + 1] - mesh.cell_face_offsets()[c]));
+  auto holds = [&](int g, int a, int b) {
+    const auto p = mesh.face(g);
+    return std::find(p.begin(), p.end(), a) != p.end() && std::find(p.begin(), p.end(), b) != p.end();
+  };
+  for (int e : surface.face_edges(s)) {
+    const auto& edge = surface.edges()[static_cast<std::size_t>(e)];
+    const double length = edge.normal.norm();
+    int a = -1, b = -1;
+    for (std::size_t k = 0; k < points.size() && a < 0; ++k) {
+      const int p = points[k], q = points[(k + 1) % points.size()];
+      if ((0.5 * (mesh.points()[p] + mesh.points()[q]) - edge.centre).norm() <= 1e-6 * length) {
+        a = p;
+        b = q;
+      }
+    }
+    KELVIN_CHECK(a >= 0, "every free-surface edge is an edge of its mesh face");
+    const auto side = std::find_if(cell.begin(), cell.end(), [&](int g) { return g != f && holds(g, a, b); });
+    KELVIN_CHECK(side != cell.end(), "a closed cell under every free-surface edge");
+    const int g = *side;
+    const double sign = mesh.owner()[g] == c ? 1.0 : -1.0;
+    const Vector3 n = (edge.face == s ? 1.0 : -1.0) * edge.normal / length;
+    const Vector3 area = sign * mesh.face_areas()[g];
+    out.push_back(sign * flux[g] / std::max(area.dot(n), 0.5 * area.norm()));
+  }
+}
+
 }  // namespace
 
 void LinearizedFreeSurfaceOptions::Validate() const {
@@ -197,6 +238,9 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
   KELVIN_CHECK(coupling.dt > 0.0, "positive time step");
   const Patch& patch = mesh_.patches()[patch_index_];
   const std::size_t own = surface_face_.size();
+  // The local flow's base flow follows the flow under the lid and stays as
+  // it was when the surface is released.
+  if (LocalFlow(options_) && (rigid_lid_ || base_velocity_.empty())) SetBaseFlow(ctx);
   if (rigid_lid_) {
     // Zero flux: the normal pressure gradient balances the predicted flux,
     // F_f = F_HbyA,f - rAU_f |S_f| dp/dn = 0.
@@ -215,7 +259,6 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
   // across the partition) and keeps eta*_f and dt'_f of every face.
   std::vector<double>& known = eta_star_;
   std::vector<double> diag;
-  if (LocalFlow(options_)) UpdateLocalFlow(ctx);
   AssembleKinematic(t, coupling.dt, bdf2, known, diag);
   for (int s = 0; s < surface_.size(); ++s) {
     // Non-finite (a diverging run): the elevation turns non-finite and the
@@ -239,62 +282,53 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
   Mixed<double>::Update(ctx, {});
 }
 
-void LinearizedFreeSurface::UpdateLocalFlow(const BcContext& ctx) {
+void LinearizedFreeSurface::SetBaseFlow(const BcContext& ctx) {
   KELVIN_CHECK(ctx.face_flux.size() == static_cast<std::size_t>(mesh_.n_faces()),
                "the relative face fluxes for the local-flow free surface");
   const Patch& patch = mesh_.patches()[patch_index_];
   const std::size_t own = surface_face_.size();
-  std::vector<double> u(own), v(own);
+  // Per face of the rank: the cell velocity (u, v), then the outward normal
+  // velocity across each of its surface edges (face_edges order).
+  std::vector<double> mine;
   for (std::size_t i = 0; i < own; ++i) {
     const int f = patch.start + static_cast<int>(i);
     const Vector3 c = CellVelocityFromFluxes(mesh_, ctx.face_flux, mesh_.owner()[f]);
-    u[i] = c.x();
-    v[i] = c.y();
+    mine.push_back(c.x());
+    mine.push_back(c.y());
+    SideVelocities(mesh_, ctx.face_flux, f, surface_, surface_face_[i], mine);
   }
   const int n = surface_.size();
-  std::vector<double> all_u(n), all_v(n);
-  if (part_) {
-    const std::vector<double> gu = AllGather(*part_, u), gv = AllGather(*part_, v);
-    for (std::size_t k = 0; k < gu.size(); ++k) {
-      all_u[gathered_faces_[k]] = gu[k];
-      all_v[gathered_faces_[k]] = gv[k];
-    }
-  } else {
-    for (std::size_t i = 0; i < own; ++i) {
-      all_u[surface_face_[i]] = u[i];
-      all_v[surface_face_[i]] = v[i];
+  const std::vector<double> all = part_ ? AllGather(*part_, mine) : mine;
+  base_velocity_.resize(n);
+  std::vector<std::size_t> slot(static_cast<std::size_t>(n) + 1, 0);
+  for (int s = 0; s < n; ++s) slot[s + 1] = slot[s] + surface_.face_edges(s).size();
+  std::vector<double> side(slot[n]);
+  std::size_t k = 0;
+  for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
+    const int s = part_ ? gathered_faces_[j] : surface_face_[j];
+    base_velocity_[s] = Vector3(all[k], all[k + 1], 0.0);
+    k += 2;
+    const auto edges = surface_.face_edges(s);
+    for (std::size_t m = 0; m < edges.size(); ++m) side[slot[s] + m] = all[k++];
+  }
+  // The flux of each edge: the mean of what the faces on either side see
+  // (the same mesh face on conforming meshes), outward from edge.face.
+  const auto& edges = surface_.edges();
+  base_edge_flux_.assign(edges.size(), 0.0);
+  for (int s = 0; s < n; ++s) {
+    const auto fe = surface_.face_edges(s);
+    for (std::size_t m = 0; m < fe.size(); ++m) {
+      const auto& edge = edges[static_cast<std::size_t>(fe[m])];
+      const double out = side[slot[s] + m] * edge.normal.norm();
+      const double w = edge.neighbour < 0 ? 1.0 : 0.5;
+      base_edge_flux_[static_cast<std::size_t>(fe[m])] += (edge.face == s ? w : -w) * out;
     }
   }
-  local_flow_.resize(n);
-  for (int i = 0; i < n; ++i) local_flow_[i] = Vector3(all_u[i], all_v[i], 0.0);
-  // Its gradient, to carry the face value to the rim edges.
-  std::vector<Vector3> gu, gv;
-  surface_.Gradient(all_u, gu);
-  surface_.Gradient(all_v, gv);
-  local_flow_gradient_.resize(n);
-  for (int i = 0; i < n; ++i) local_flow_gradient_[i] << gu[i].transpose(), gv[i].transpose(), Vector3::Zero().transpose();
 }
 
 Vector3 LinearizedFreeSurface::StreamAtFace(int i, double t) const {
-  if (LocalFlow(options_)) return local_flow_[i];
+  if (LocalFlow(options_)) return base_velocity_[i];
   return -options_.mesh_velocity(surface_.centres()[i], t);
-}
-
-Vector3 LinearizedFreeSurface::StreamAtEdge(std::size_t e, double t) const {
-  const auto& edge = surface_.edges()[e];
-  if (!LocalFlow(options_)) {
-    return -options_.mesh_velocity(edge.centre, t);
-  }
-  if (edge.neighbour < 0) {
-    // On the rim, linear extrapolation from the face.
-    const int a = edge.face;
-    return local_flow_[a] + local_flow_gradient_[a] * (edge.centre - surface_.centres()[a]);
-  }
-  // Linear interpolation between the two face centres.
-  const double to_a = (edge.centre - surface_.centres()[edge.face]).norm();
-  const double to_b = (surface_.centres()[edge.neighbour] - edge.centre).norm();
-  const double w = to_b / (to_a + to_b);
-  return w * local_flow_[edge.face] + (1.0 - w) * local_flow_[edge.neighbour];
 }
 
 void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, std::vector<double>& known,
@@ -312,20 +346,24 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
   // ... and the advection relative to the mesh, c = -u_b or the local flow,
   // in conservative form on the edges (flux q_e = c . n_e |e| out of
   // edge.face).
-  if (options_.mesh_velocity || !local_flow_.empty()) {
+  if (options_.mesh_velocity || !base_velocity_.empty()) {
     const auto& edges = surface_.edges();
     edge_flux_.resize(edges.size());
-    // The local flow does not cross a wall (the hull's waterline, where the
-    // uniform stream does and eta is extrapolated): no flux there. The
-    // extrapolated cell velocity would leave some, of either sign, and an
-    // inflow across the waterline lowers the implicit diagonal.
+    // The local flow does not cross a wall or the hull's waterline (where the
+    // uniform stream does and eta is extrapolated): its side fluxes there are
+    // zero up to the solver's tolerance, and set to exactly zero, since an
+    // inflow across the waterline would lower the implicit diagonal.
     const bool local = LocalFlow(options_);
     auto wall = [&](const PatchSurface::Edge& edge) {
       return edge.neighbour < 0 && edge.rim_patch >= 0 && mesh_.patches()[edge.rim_patch].kind == PatchKind::kWall;
     };
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const bool closed = local && edges[e].neighbour < 0 && (extrapolate_rim_[e] || wall(edges[e]));
-      edge_flux_[e] = closed ? 0.0 : StreamAtEdge(e, t).dot(edges[e].normal);
+      if (closed) {
+        edge_flux_[e] = 0.0;
+      } else {
+        edge_flux_[e] = local ? base_edge_flux_[e] : -options_.mesh_velocity(edges[e].centre, t).dot(edges[e].normal);
+      }
     }
     using Advection = LinearizedFreeSurfaceOptions::Advection;
     const bool second_order = options_.advection != Advection::kUpwind;
@@ -475,6 +513,11 @@ std::vector<double> LinearizedFreeSurface::State() const {
       s.insert(s.end(), n, 0.0);
     }
   }
+  s.insert(s.end(), base_edge_flux_.begin(), base_edge_flux_.end());
+  for (const Vector3& u : base_velocity_) {
+    s.push_back(u.x());
+    s.push_back(u.y());
+  }
   return s;
 }
 
@@ -485,16 +528,21 @@ void LinearizedFreeSurface::SetState(std::span<const double> s) {
     // the double body): calm water, the next step starts the levels.
     std::fill(eta_.begin(), eta_.end(), 0.0);
     eta_old_.clear();
+    base_velocity_.clear();
+    base_edge_flux_.clear();
     started_ = false;
     armed_ = false;
     return;
   }
-  // Header of 4 values (with the rigid-lid flag) or 3 (older checkpoints).
-  const std::size_t header = s.size() == 4 + 3 * n ? 4 : 3;
-  if (s.size() != header + 3 * n) {
-    throw DataFileError(
-        fmt::format("free-surface state of patch '{}' has {} values; expected {} for {} faces",
-                    surface_.name(), s.size(), 4 + 3 * n, n));
+  // Header of 4 values (with the rigid-lid flag) or 3 (older checkpoints);
+  // the base flow of the local flow after the levels, once it is set.
+  const std::size_t base = surface_.edges().size() + 2 * n;
+  const std::size_t header = s.size() == 3 + 3 * n ? 3 : 4;
+  const bool with_base = s.size() == 4 + 3 * n + base;
+  if (s.size() != header + 3 * n && !with_base) {
+    throw DataFileError(fmt::format(
+        "free-surface state of patch '{}' has {} values; expected {} for {} faces ({} with the base flow of {} edges)",
+        surface_.name(), s.size(), 4 + 3 * n, n, 4 + 3 * n + base, surface_.edges().size()));
   }
   time_ = s[0];
   started_ = s[1] != 0.0;
@@ -506,6 +554,14 @@ void LinearizedFreeSurface::SetState(std::span<const double> s) {
   for (std::size_t l = 0; l < std::min<std::size_t>(levels, 2); ++l) {
     const auto first = s.begin() + static_cast<std::ptrdiff_t>(header + (l + 1) * n);
     eta_old_.emplace_back(first, first + static_cast<std::ptrdiff_t>(n));
+  }
+  base_velocity_.clear();
+  base_edge_flux_.clear();
+  if (with_base) {
+    const std::size_t e0 = 4 + 3 * n, edges = surface_.edges().size();
+    base_edge_flux_.assign(s.begin() + static_cast<std::ptrdiff_t>(e0),
+                           s.begin() + static_cast<std::ptrdiff_t>(e0 + edges));
+    for (std::size_t i = 0; i < n; ++i) base_velocity_.emplace_back(s[e0 + edges + 2 * i], s[e0 + edges + 2 * i + 1], 0.0);
   }
   armed_ = false;
 }

@@ -11,19 +11,26 @@
 //  - uniform stream (Neumann-Kelvin, the default): c = -u_b, with u_b the
 //    velocity of the mesh through the still water (div_h c = 0 for rigid
 //    in-plane motion, so the conservative and the advective forms agree);
-//  - local flow (double-body or Dawson type): c = u_h, the horizontal flow
-//    velocity relative to the mesh in the cell under each face (the flow
-//    slows and turns about bow and stern). Linearizing the exact condition
-//    d eta/dt + u . grad_h eta = w on z = eta about a base flow that is
-//    symmetric about z = 0 (w = 0 and dp/dz = 0 there, as in the double
-//    body), w(eta) = w(0) + eta dw/dz = w(0) - eta div_h u_h by continuity,
-//    and the eta div_h u_h term joins the advection into the same
-//    conservative form div_h(u_h eta) (Dawson 1977; the consistency of such
-//    linearizations is discussed by Raven 1996). The dynamic condition is
-//    unchanged, since dp/dz of the base flow vanishes on z = 0. u_h is taken
-//    from the fluxes of the last corrector (lagged, like the upwind
-//    neighbours below), so a steady state solves the condition about its own
-//    flow.
+//  - local flow (double-body or Dawson type): c = u_h, the horizontal
+//    velocity relative to the mesh of a base flow: the double body (the
+//    flow slows and turns about bow and stern). Linearizing the exact
+//    condition d eta/dt + u . grad_h eta = w on z = eta about a base flow
+//    that is symmetric about z = 0 (w = 0 and dp/dz = 0 there, as in the
+//    double body), w(eta) = w(0) + eta dw/dz = w(0) - eta div_h u_h by
+//    continuity, and the eta div_h u_h term joins the advection into the
+//    same conservative form div_h(u_h eta) (Dawson 1977; the consistency of
+//    such linearizations is discussed by Raven 1996). The dynamic condition
+//    is unchanged, since dp/dz of the base flow vanishes on z = 0.
+//    The base flow is the flow of the last pressure solve under the rigid
+//    lid (the double body of the run's start; without a lid, the flow of the
+//    first pressure solve), frozen when the surface is released: taken from
+//    the running solution, dw/dz would include the wave's own flow, whose
+//    vertical decay in a boundary-layer cell a few mm high is that cell's
+//    scale, not the wave's, and eta dw/dz, a second-order term, then grows
+//    the elevation beside the hull without bound (measured on the Wigley).
+//    The edge fluxes of u_h are those of the cell under each face through
+//    its side faces, so they obey the cell's continuity and no flux crosses
+//    a wall.
 //
 // Time discretization (Euler or BDF2, following the solver) with implicit
 // first-order upwind advection; the neighbour values and the second-order
@@ -172,8 +179,9 @@ class LinearizedFreeSurface : public Mixed<double> {
   // (the undecomposed mesh's patch faces, in its order) on every rank, so
   // they do not depend on the partition.
   // [time, started, old levels, rigid lid, eta, eta^n, eta^{n-1}] (old
-  // levels padded with zeros); SetState also reads the older layout without
-  // the rigid-lid flag.
+  // levels padded with zeros), then, once the local flow's base flow is set,
+  // its edge fluxes and face velocities (u, v); SetState also reads the older
+  // layout without the rigid-lid flag.
   // SetState of an empty state (the checkpoint of a run without the free
   // surface, e.g. a converged double body) starts from calm water.
   std::vector<double> State() const override;
@@ -203,12 +211,11 @@ class LinearizedFreeSurface : public Mixed<double> {
   void AdvanceTime(double time);
   // Face value of the applied pressure at time t (surface face i).
   double SurfacePressure(int i, double time) const;
-  // Local flow: the horizontal velocity relative to the mesh under every
-  // surface face (all ranks' faces), from the relative fluxes of ctx.
-  void UpdateLocalFlow(const BcContext& ctx);
-  // The advecting velocity c at surface face i and at edge e.
+  // Local flow: sets the base flow (all ranks' faces and edges) from the
+  // relative fluxes of ctx.
+  void SetBaseFlow(const BcContext& ctx);
+  // The advecting velocity c at surface face i.
   Vector3 StreamAtFace(int i, double t) const;
-  Vector3 StreamAtEdge(std::size_t e, double t) const;
   // The known part eta*_f and the implicit diagonal of every surface face
   // (the advection, the beach and the local pseudo-time included).
   void AssembleKinematic(double t, double dt, bool bdf2, std::vector<double>& known, std::vector<double>& diag);
@@ -225,8 +232,10 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::vector<int> gathered_faces_;
   std::vector<char> extrapolate_rim_;  // per edge: inflow extrapolates eta (waterline)
   std::vector<double> mu_;
-  std::vector<Vector3> local_flow_;               // per surface face (local-flow linearization)
-  std::vector<Eigen::Matrix3d> local_flow_gradient_;  // its in-plane gradient per face
+  // The local flow's base flow (empty until set): the velocity under each
+  // surface face and the flux of each edge, c . n_e |e| out of edge.face (m^2/s).
+  std::vector<Vector3> base_velocity_;
+  std::vector<double> base_edge_flux_;
   std::vector<double> eta_;
   std::vector<std::vector<double>> eta_old_;  // eta^n, eta^{n-1}
   double time_ = 0.0;

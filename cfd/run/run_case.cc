@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "cfd/freesurface/linearized_free_surface.h"
 #include "data/schema/atomic_file.h"
 #include "cfd/run/captive_sampler.h"
 #include "cfd/run/free_running.h"
@@ -75,6 +76,14 @@ RunSummary RunCase(const fs::path& case_file, const RunOptions& options) {
       spdlog::info("removed {} temporary file(s) a stopped run left in {}", n, c.settings.output.directory.string());
     }
   });
+  if (c.free_surface && options.restart.empty() && c.settings.time.rigid_lid_windows == 0.0 &&
+      c.free_surface->options().linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow &&
+      (!part || part->rank == 0)) {
+    spdlog::warn("{}: linearization local_flow without time.rigid_lid_windows: the kinematic condition is linearized "
+                 "about the flow of the first step, not about a double body; start from a rigid lid, or restart from "
+                 "a converged double body's checkpoint (docs/formulation.md section 3.1)",
+                 case_file.string());
+  }
   std::vector<std::unique_ptr<Monitor>> owned = MakeMonitors(c);
   std::vector<Monitor*> monitors;
   for (auto& m : owned) monitors.push_back(m.get());

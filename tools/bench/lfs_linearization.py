@@ -13,8 +13,8 @@ R_W = R_P - R_P(db) on the same grid. Writes the section `lfs_linearization` of 
 
 The grids are expected under --grids (kelvin mesh data/cases/resistance/dtc_mesh.yaml and wigley_mesh.yaml).
 
-Usage: tools/bench/lfs_linearization.py [--kelvin build/ci/tools/kelvin] [--hulls dtc,wigley] [--report-only]
-       [--write] [--results DIR]
+Usage: tools/bench/lfs_linearization.py [--kelvin build/ci/tools/kelvin] [--hulls dtc,wigley] [--runs LABELS]
+       [--report-only] [--write] [--results DIR]
 """
 import argparse
 import datetime
@@ -89,6 +89,7 @@ def main():
     ap.add_argument("--grids", default=os.path.join(ROOT, "build", "grids"))
     ap.add_argument("--hulls", default="dtc,wigley")
     ap.add_argument("--report-only", action="store_true")
+    ap.add_argument("--runs", default="", help="comma-separated labels to run again (default: every run of --hulls)")
     ap.add_argument("--write", nargs="?", const=os.path.join(ROOT, "BENCHMARKS.md"), default=None,
                     help="write the section into this file (default BENCHMARKS.md)")
     args = ap.parse_args()
@@ -96,10 +97,15 @@ def main():
     for h in hulls:
         if h not in RUNS:
             raise SystemExit(f"--hulls: {h!r}; expected some of {', '.join(RUNS)}")
+    labels = {label for runs in RUNS.values() for label, _, _ in runs}
+    only = {r for r in args.runs.split(",") if r}
+    if only - labels:
+        raise SystemExit(f"--runs: {', '.join(sorted(only - labels))}; expected some of {', '.join(sorted(labels))}")
     if not args.report_only:
         for h in hulls:
             for label, case, overrides in RUNS[h]:
-                run(args.kelvin, label, case, overrides, args.results)
+                if not only or label in only:
+                    run(args.kelvin, label, case, overrides, args.results)
     rows = [r for runs in RUNS.values() for label, _, _ in runs
             if (r := read(label, args.results, args.grids)) is not None]
     write_or_print(args.write, NAME, section(rows, args.results))

@@ -3,6 +3,8 @@
 // bit for bit, and every bad input is one ConfigError naming the file and
 // the key.
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <fstream>
 #include <sstream>
@@ -113,8 +115,10 @@ TEST(FreeSurfaceCase, RunWritesEtaOnThePatchAndRestartsBitForBit) {
   ExpectRestartBitForBit(tmp / "out" / "checkpoint.h5", [](double end) { return CaseText(end); });
 }
 
-// The local-flow linearization reads the flow under the surface from the
-// fluxes, which the checkpoint holds: its restart is bit for bit as well.
+// The local-flow linearization keeps its base flow (here, without a rigid
+// lid, the flow of the first step) in the checkpoint: its restart is bit for
+// bit as well. A run that starts without a lid says that its base flow is
+// not a double body.
 TEST(FreeSurfaceCase, LocalFlowRunRestartsBitForBit) {
   auto text = [](double end) {
     return Replace(CaseText(end), "      advection: quick\n", "      advection: quick\n      linearization: local_flow\n");
@@ -122,8 +126,14 @@ TEST(FreeSurfaceCase, LocalFlowRunRestartsBitForBit) {
   kelvin::testing::ScopedTempDir tmp;
   RunOptions o;
   o.progress = false;
+  std::ostringstream log;
+  const auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(
+      std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
   const RunSummary s = RunCase(WriteCase(tmp.path(), text(1.0)), o);
+  spdlog::set_default_logger(previous);
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+  EXPECT_NE(log.str().find("local_flow without time.rigid_lid_windows"), std::string::npos) << log.str();
   ExpectRestartBitForBit(tmp / "out" / "checkpoint.h5", text);
 }
 

@@ -449,6 +449,58 @@ TEST(LinearizedFreeSurface, LocalFlowCarriesEtaWithTheStreamUnderTheSurface) {
   EXPECT_GT(order, 1.8);
 }
 
+// The local flow's base flow is the flow under the rigid lid, frozen when
+// the surface is released: a different flow afterwards (in a run, the wave's
+// own) does not carry eta. Released into the uniform stream after a lid over
+// the slowing stream, eta settles at the exact steady elevation of the
+// slowing stream (first-order upwind: exact at the outflow edges), not at the
+// uniform stream's w0 x / U0, and the reverse.
+TEST(LinearizedFreeSurface, LocalFlowKeepsTheBaseFlowOfTheRigidLid) {
+  SteadyStream s;
+  LinearizedFreeSurfaceOptions o;
+  o.linearization = LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
+  o.advection = LinearizedFreeSurfaceOptions::Advection::kUpwind;
+  o.kinematic_courant = 2.0;
+  const int top = s.mesh.FindPatch("zmax");
+  const Patch& patch = s.mesh.patches()[top];
+  const std::vector<double> zero(s.mesh.n_faces(), 0.0), one(s.mesh.n_faces(), 1.0);
+  std::vector<double> rise(s.mesh.n_faces(), 0.0);
+  for (int f = patch.start; f < patch.start + patch.size; ++f) {
+    rise[f] = SteadyStream::kW0 * s.mesh.face_area_magnitudes()[f];
+  }
+  auto released = [&](const std::vector<double>& under_lid, const std::vector<double>& after) {
+    LinearizedFreeSurface bc(s.mesh, top, o);
+    bc.SetRigidLid(true);
+    for (int step = 0; step < 3; ++step) {
+      const BcContext lid{s.mesh, patch, 0.5 * step, under_lid};
+      bc.Update(lid, {});
+      bc.PreparePressureSolve(lid, PressureCoupling{0.5, false, one, zero});
+      bc.CorrectAfterFlux(lid, zero);
+    }
+    bc.SetRigidLid(false);
+    for (int step = 1; step <= 100; ++step) {
+      const BcContext ctx{s.mesh, patch, 1.0 + step, after};
+      bc.Update(ctx, {});
+      for (int it = 0; it < 40; ++it) {
+        bc.PreparePressureSolve(ctx, PressureCoupling{1.0, false, zero, zero});
+        bc.CorrectAfterFlux(ctx, rise);
+      }
+    }
+    return bc.eta();
+  };
+  const double dx = 4.0 / 40;
+  const std::vector<double> slowing = released(s.Flow(SteadyStream::kA), s.Flow(0.0));
+  const std::vector<double> uniform = released(s.Flow(0.0), s.Flow(SteadyStream::kA));
+  double worst_slowing = 0.0, worst_uniform = 0.0;
+  for (int i = 0; i < patch.size; ++i) {
+    const double x_out = s.mesh.face_centres()[patch.start + i].x() + 0.5 * dx;
+    worst_slowing = std::max(worst_slowing, std::abs(slowing[i] - SteadyStream::Exact(x_out)));
+    worst_uniform = std::max(worst_uniform, std::abs(uniform[i] - SteadyStream::kW0 * x_out / SteadyStream::kU0));
+  }
+  EXPECT_LT(worst_slowing, 1e-12);
+  EXPECT_LT(worst_uniform, 1e-12);
+}
+
 // In a uniform stream the two linearizations are the same condition: the
 // local flow of a mesh at rest in the stream U0 gives the elevation of the
 // uniform-stream form with the mesh moving at -U0 through still water.

@@ -397,11 +397,19 @@ std::string SurfaceFirstHalf(std::string text) {
   return text;
 }
 
-TEST(FreeSurfaceOnRanks, ForcesAndPatternMatchTheSerialRunAtEveryStep) {
-  const SurfaceRun serial = SerialRun(kFreeSurfaceCase, ReadSurfaceRun);
+// The same case with the kinematic condition linearized about the local flow
+// (its base flow, set under the lid, is gathered from the ranks' fluxes).
+std::string LocalFlow(std::string text) {
+  const std::string at = "limit_advection: true,";
+  text.replace(text.find(at), at.size(), at + " linearization: local_flow,");
+  return text;
+}
+
+void ExpectSurfaceRunMatchesSerial(const std::string& text) {
+  const SurfaceRun serial = SerialRun(text, ReadSurfaceRun);
   ASSERT_EQ(serial.force.size(), 40u * 6);
   SharedTempDir dir;
-  const RunSummary s = RunIn(Write(dir / "ranks", kFreeSurfaceCase), MPI_COMM_WORLD);
+  const RunSummary s = RunIn(Write(dir / "ranks", text), MPI_COMM_WORLD);
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
   EXPECT_THAT(s.message, HasSubstr("resistance on 'obstacle'"));  // rank 0's report, on every rank
   const SurfaceRun ranks = ReadSurfaceRun(dir / "ranks/out");
@@ -431,23 +439,29 @@ TEST(FreeSurfaceOnRanks, ForcesAndPatternMatchTheSerialRunAtEveryStep) {
   }
 }
 
+TEST(FreeSurfaceOnRanks, ForcesAndPatternMatchTheSerialRunAtEveryStep) { ExpectSurfaceRunMatchesSerial(kFreeSurfaceCase); }
+
+TEST(FreeSurfaceOnRanks, LocalFlowMatchesTheSerialRunAtEveryStep) {
+  ExpectSurfaceRunMatchesSerial(LocalFlow(kFreeSurfaceCase));
+}
+
 // A free-surface checkpoint holds the whole pattern: a run saved on the
 // ranks continues serially, and a serial one on the ranks, to the end of
 // the uninterrupted serial run.
-TEST(FreeSurfaceOnRanks, CheckpointRestartsOnAnotherNumberOfRanks) {
-  const SurfaceRun serial = SerialRun(kFreeSurfaceCase, ReadSurfaceRun);
+void ExpectSurfaceRestartsAcrossRanks(const std::string& text) {
+  const SurfaceRun serial = SerialRun(text, ReadSurfaceRun);
   SharedTempDir dir;
-  ASSERT_EQ(RunIn(Write(dir / "half_ranks", SurfaceFirstHalf(kFreeSurfaceCase)), MPI_COMM_WORLD).status,
+  ASSERT_EQ(RunIn(Write(dir / "half_ranks", SurfaceFirstHalf(text)), MPI_COMM_WORLD).status,
             RunSummary::Status::kCompleted);
-  const SurfaceRun continued = SerialRun(kFreeSurfaceCase, ReadSurfaceRun, dir / "half_ranks/out/checkpoint.h5");
+  const SurfaceRun continued = SerialRun(text, ReadSurfaceRun, dir / "half_ranks/out/checkpoint.h5");
   const double to_serial = Mismatch(serial.force, continued.force), eta_serial = Mismatch(serial.eta, continued.eta);
   MPI_Barrier(MPI_COMM_WORLD);
   if (WorldRank() == 0) {
-    std::ofstream(dir / "serial_half.yaml") << SurfaceFirstHalf(kFreeSurfaceCase);
+    std::ofstream(dir / "serial_half.yaml") << SurfaceFirstHalf(text);
     RunIn(dir / "serial_half.yaml", MPI_COMM_NULL, {}, dir / "half_serial");
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  const RunSummary s = RunIn(Write(dir / "rest", kFreeSurfaceCase), MPI_COMM_WORLD, dir / "half_serial/checkpoint.h5");
+  const RunSummary s = RunIn(Write(dir / "rest", text), MPI_COMM_WORLD, dir / "half_serial/checkpoint.h5");
   ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
   const SurfaceRun rest = ReadSurfaceRun(dir / "rest/out");
   const double to_ranks = Mismatch(serial.force, rest.force), eta_ranks = Mismatch(serial.eta, rest.eta);
@@ -459,6 +473,14 @@ TEST(FreeSurfaceOnRanks, CheckpointRestartsOnAnotherNumberOfRanks) {
   EXPECT_EQ(rest.force.size(), 20u * 6);
   EXPECT_LT(std::max(to_serial, to_ranks), 1e-8);
   EXPECT_LT(std::max(eta_serial, eta_ranks), 1e-8);
+}
+
+TEST(FreeSurfaceOnRanks, CheckpointRestartsOnAnotherNumberOfRanks) { ExpectSurfaceRestartsAcrossRanks(kFreeSurfaceCase); }
+
+// The base flow, frozen at the release, before the checkpoint at
+// t = 10 s, is in the checkpoint of the whole surface.
+TEST(FreeSurfaceOnRanks, LocalFlowCheckpointRestartsOnAnotherNumberOfRanks) {
+  ExpectSurfaceRestartsAcrossRanks(LocalFlow(kFreeSurfaceCase));
 }
 
 // The free-running Wigley turn (data/cases/free_running/wigley_turning.yaml:
