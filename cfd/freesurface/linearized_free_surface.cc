@@ -18,47 +18,6 @@ bool LocalFlow(const LinearizedFreeSurfaceOptions& o) {
   return o.linearization == LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
 }
 
-// Appends to `out` the horizontal velocity out of surface face s across each
-// of its edges (face_edges order), from the relative flux through the side of
-// the cell under it: the other face g of that cell that holds the edge (in a
-// closed cell every edge of a face is shared by exactly one other face of
-// the cell). u_n = F_g / (S_g . n_e), with the projected area bounded below
-// by half of |S_g| for a face that leans toward the plane. These velocities
-// obey the cell's own continuity: no flux crosses a wall, and the divergence
-// of the edge fluxes is the vertical outflow of the cell per unit height.
-void SideVelocities(const Mesh& mesh, std::span<const double> flux, int f, const PatchSurface& surface, int s,
-                    std::vector<double>& out) {
-  const int c = mesh.owner()[f];
-  const auto points = mesh.face(f);
-  const std::span<const int> cell = mesh.cell_faces().subspan(
-      static_cast<std::size_t>(mesh.cell_face_offsets()[c]),
-      static_cast<std::size_t>(mesh.cell_face_offsets()[c + 1] - mesh.cell_face_offsets()[c]));
-  auto holds = [&](int g, int a, int b) {
-    const auto p = mesh.face(g);
-    return std::find(p.begin(), p.end(), a) != p.end() && std::find(p.begin(), p.end(), b) != p.end();
-  };
-  for (int e : surface.face_edges(s)) {
-    const auto& edge = surface.edges()[static_cast<std::size_t>(e)];
-    const double length = edge.normal.norm();
-    int a = -1, b = -1;
-    for (std::size_t k = 0; k < points.size() && a < 0; ++k) {
-      const int p = points[k], q = points[(k + 1) % points.size()];
-      if ((0.5 * (mesh.points()[p] + mesh.points()[q]) - edge.centre).norm() <= 1e-6 * length) {
-        a = p;
-        b = q;
-      }
-    }
-    KELVIN_CHECK(a >= 0, "every free-surface edge is an edge of its mesh face");
-    const auto side = std::find_if(cell.begin(), cell.end(), [&](int g) { return g != f && holds(g, a, b); });
-    KELVIN_CHECK(side != cell.end(), "a closed cell under every free-surface edge");
-    const int g = *side;
-    const double sign = mesh.owner()[g] == c ? 1.0 : -1.0;
-    const Vector3 n = (edge.face == s ? 1.0 : -1.0) * edge.normal / length;
-    const Vector3 area = sign * mesh.face_areas()[g];
-    out.push_back(sign * flux[g] / std::max(area.dot(n), 0.5 * area.norm()));
-  }
-}
-
 }  // namespace
 
 void LinearizedFreeSurfaceOptions::Validate() const {
@@ -287,42 +246,51 @@ void LinearizedFreeSurface::SetBaseFlow(const BcContext& ctx) {
                "the relative face fluxes for the local-flow free surface");
   const Patch& patch = mesh_.patches()[patch_index_];
   const std::size_t own = surface_face_.size();
-  // Per face of the rank: the cell velocity (u, v), then the outward normal
-  // velocity across each of its surface edges (face_edges order).
-  std::vector<double> mine;
+  std::vector<double> u(own), v(own);
   for (std::size_t i = 0; i < own; ++i) {
     const int f = patch.start + static_cast<int>(i);
     const Vector3 c = CellVelocityFromFluxes(mesh_, ctx.face_flux, mesh_.owner()[f]);
-    mine.push_back(c.x());
-    mine.push_back(c.y());
-    SideVelocities(mesh_, ctx.face_flux, f, surface_, surface_face_[i], mine);
+    u[i] = c.x();
+    v[i] = c.y();
   }
   const int n = surface_.size();
-  const std::vector<double> all = part_ ? AllGather(*part_, mine) : mine;
-  base_velocity_.resize(n);
-  std::vector<std::size_t> slot(static_cast<std::size_t>(n) + 1, 0);
-  for (int s = 0; s < n; ++s) slot[s + 1] = slot[s] + surface_.face_edges(s).size();
-  std::vector<double> side(slot[n]);
-  std::size_t k = 0;
-  for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
-    const int s = part_ ? gathered_faces_[j] : surface_face_[j];
-    base_velocity_[s] = Vector3(all[k], all[k + 1], 0.0);
-    k += 2;
-    const auto edges = surface_.face_edges(s);
-    for (std::size_t m = 0; m < edges.size(); ++m) side[slot[s] + m] = all[k++];
-  }
-  // The flux of each edge: the mean of what the faces on either side see
-  // (the same mesh face on conforming meshes), outward from edge.face.
-  const auto& edges = surface_.edges();
-  base_edge_flux_.assign(edges.size(), 0.0);
-  for (int s = 0; s < n; ++s) {
-    const auto fe = surface_.face_edges(s);
-    for (std::size_t m = 0; m < fe.size(); ++m) {
-      const auto& edge = edges[static_cast<std::size_t>(fe[m])];
-      const double out = side[slot[s] + m] * edge.normal.norm();
-      const double w = edge.neighbour < 0 ? 1.0 : 0.5;
-      base_edge_flux_[static_cast<std::size_t>(fe[m])] += (edge.face == s ? w : -w) * out;
+  std::vector<double> all_u(n), all_v(n);
+  if (part_) {
+    const std::vector<double> gu = AllGather(*part_, u), gv = AllGather(*part_, v);
+    for (std::size_t k = 0; k < gu.size(); ++k) {
+      all_u[gathered_faces_[k]] = gu[k];
+      all_v[gathered_faces_[k]] = gv[k];
     }
+  } else {
+    for (std::size_t i = 0; i < own; ++i) {
+      all_u[surface_face_[i]] = u[i];
+      all_v[surface_face_[i]] = v[i];
+    }
+  }
+  base_velocity_.resize(n);
+  for (int i = 0; i < n; ++i) base_velocity_[i] = Vector3(all_u[i], all_v[i], 0.0);
+  // The edge fluxes: the velocity interpolated linearly between the two
+  // face centres, and on the rim extrapolated from the face by its
+  // least-squares gradient.
+  std::vector<Vector3> gu, gv;
+  surface_.Gradient(all_u, gu);
+  surface_.Gradient(all_v, gv);
+  const auto& edges = surface_.edges();
+  base_edge_flux_.resize(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto& edge = edges[e];
+    const int a = edge.face;
+    Vector3 c;
+    if (edge.neighbour < 0) {
+      const Vector3 d = edge.centre - surface_.centres()[a];
+      c = base_velocity_[a] + Vector3(gu[a].dot(d), gv[a].dot(d), 0.0);
+    } else {
+      const double to_a = (edge.centre - surface_.centres()[a]).norm();
+      const double to_b = (surface_.centres()[edge.neighbour] - edge.centre).norm();
+      const double w = to_b / (to_a + to_b);
+      c = w * base_velocity_[a] + (1.0 - w) * base_velocity_[edge.neighbour];
+    }
+    base_edge_flux_[e] = c.dot(edge.normal);
   }
 }
 
@@ -349,10 +317,10 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
   if (options_.mesh_velocity || !base_velocity_.empty()) {
     const auto& edges = surface_.edges();
     edge_flux_.resize(edges.size());
-    // The local flow does not cross a wall or the hull's waterline (where the
-    // uniform stream does and eta is extrapolated): its side fluxes there are
-    // zero up to the solver's tolerance, and set to exactly zero, since an
-    // inflow across the waterline would lower the implicit diagonal.
+    // The local flow does not cross a wall (the hull's waterline, where the
+    // uniform stream does and eta is extrapolated): no flux there. The
+    // extrapolated cell velocity would leave some, of either sign, and an
+    // inflow across the waterline lowers the implicit diagonal.
     const bool local = LocalFlow(options_);
     auto wall = [&](const PatchSurface::Edge& edge) {
       return edge.neighbour < 0 && edge.rim_patch >= 0 && mesh_.patches()[edge.rim_patch].kind == PatchKind::kWall;

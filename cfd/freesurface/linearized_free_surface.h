@@ -28,9 +28,9 @@
 //    vertical decay in a boundary-layer cell a few mm high is that cell's
 //    scale, not the wave's, and eta dw/dz, a second-order term, then grows
 //    the elevation beside the hull without bound (measured on the Wigley).
-//    The edge fluxes of u_h are those of the cell under each face through
-//    its side faces, so they obey the cell's continuity and no flux crosses
-//    a wall.
+//    u_h is the cell mean of the flow under each face, from the cell's
+//    fluxes, interpolated linearly to the edges (extrapolated by its
+//    least-squares gradient on the rim); no flux crosses a wall.
 //
 // Time discretization (Euler or BDF2, following the solver) with implicit
 // first-order upwind advection; the neighbour values and the second-order
