@@ -5,6 +5,8 @@
 #include <array>
 #include <string_view>
 
+#include "data/schema/errors.h"
+
 namespace kelvin::cfd {
 namespace {
 
@@ -15,7 +17,9 @@ constexpr std::array<std::string_view, 9> kExtraChannels = {
     "X_pressure", "Y_pressure", "N_pressure", "X_viscous", "Y_viscous",
     "N_viscous",  "X_prime",    "Y_prime",    "N_prime"};
 
-double Extra(const CaptiveSample& s, std::size_t k) {
+// Channel k of a sample (const or not).
+template <typename Sample>
+auto& Extra(Sample& s, std::size_t k) {
   switch (k) {
     case 0:
       return s.loads.pressure.X;
@@ -62,16 +66,18 @@ std::vector<CaptiveSample> ReadSamples(const fs::path& path, const RigidMotion& 
   const data::H5Reader r(path);
   auto col = [&](std::string_view name) { return r.Read("captive/" + std::string(name)).values; };
   const std::vector<double> t = col("time");
-  const std::vector<double> xp = col("X_pressure"), yp = col("Y_pressure"), np = col("N_pressure");
-  const std::vector<double> xv = col("X_viscous"), yv = col("Y_viscous"), nv = col("N_viscous");
-  const std::vector<double> x1 = col("X_prime"), y1 = col("Y_prime"), n1 = col("N_prime");
   std::vector<CaptiveSample> out(t.size());
   for (std::size_t i = 0; i < t.size(); ++i) {
     out[i].time = t[i];
     out[i].pose = motion.At(t[i]);
-    out[i].loads.pressure = {xp[i], yp[i], np[i]};
-    out[i].loads.viscous = {xv[i], yv[i], nv[i]};
-    out[i].prime = {x1[i], y1[i], n1[i]};
+  }
+  for (std::size_t k = 0; k < kExtraChannels.size(); ++k) {
+    const std::vector<double> v = col(kExtraChannels[k]);
+    if (v.size() != t.size()) {
+      throw DataFileError(fmt::format("{}: captive/{} has {} samples; expected {} (one per captive/time)",
+                                      path.string(), kExtraChannels[k], v.size(), t.size()));
+    }
+    for (std::size_t i = 0; i < t.size(); ++i) Extra(out[i], k) = v[i];
   }
   return out;
 }
