@@ -15,6 +15,8 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "tests/test_utilities/test_utilities.h"
 
@@ -48,10 +50,13 @@ class ResistanceCases {
   }
 
   // Runs case <name>.yaml once, its grid build/grids/<grid_name> replaced by
-  // `grid` and results/ by root/results/; returns the run's resistance.h5.
-  std::filesystem::path Run(const std::string& name, const std::filesystem::path& grid,
-                            const std::string& grid_name) const {
-    const std::filesystem::path out = root_ / "results" / name;
+  // `grid` and results/ by root/results/; returns the run's resistance.h5. A
+  // variant (results under <name>_<variant>) has each text `edits` names
+  // replaced in the case first.
+  using Edits = std::vector<std::pair<std::string, std::string>>;
+  std::filesystem::path Run(const std::string& name, const std::filesystem::path& grid, const std::string& grid_name,
+                            const std::string& variant = "", const Edits& edits = {}) const {
+    const std::filesystem::path out = root_ / "results" / (variant.empty() ? name : name + "_" + variant);
     const std::filesystem::path h5 = out / "resistance.h5";
     if (std::filesystem::exists(h5)) return h5;
     std::string text = ReadText(Cases() / (name + ".yaml"));
@@ -62,6 +67,10 @@ class ResistanceCases {
     };
     replace("../../../build/grids/" + grid_name, grid.string());
     replace("../../../results/", (root_ / "results").string() + "/");
+    for (const auto& [from, to] : edits) {
+      EXPECT_NE(text.find(from), std::string::npos) << name << ".yaml has no '" << from << "'";
+      replace(from, to);
+    }
     std::filesystem::create_directories(out);
     const std::filesystem::path file = out / (name + ".yaml");
     std::ofstream(file) << text;
