@@ -1,5 +1,7 @@
 #include "cfd/bc/curved_wall_pressure.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -54,6 +56,8 @@ void CurvedWallPressure::Update(const BcContext& ctx, std::span<const double>) {
   }
   const double dt = std::isnan(step_time_) ? 0.0 : ctx.time - step_time_;
   const Eigen::Matrix3d& r = ctx.mesh.placement_rotation();
+  int capped = 0, first = -1;
+  double worst = 0.0;  // largest kappa d of a capped face
   for (int i = 0; i < patch.size; ++i) {
     const int f = patch.start + i;
     const double dc = DeltaCoeff(ctx.mesh, f);
@@ -64,7 +68,12 @@ void CurvedWallPressure::Update(const BcContext& ctx, std::span<const double>) {
       const double d = 1.0 / dc;
       double g = ut.dot(r * (body_shape_[i] * (r.transpose() * ut)));
       const double cap = 0.5 * ut.squaredNorm() / d;
-      if (std::abs(g) > cap) g = std::copysign(cap, g);
+      if (std::abs(g) > cap) {
+        if (first < 0) first = f;
+        ++capped;
+        worst = std::max(worst, std::abs(g) * d / ut.squaredNorm());
+        g = std::copysign(cap, g);
+      }
       const double speed = ut.norm();
       const double beta = speed > 0.0 ? 1.0 / (1.0 + dt * std::abs(g) / speed) : 1.0;
       g_[i] = g_step_[i] + beta * (g - g_step_[i]);
@@ -75,6 +84,16 @@ void CurvedWallPressure::Update(const BcContext& ctx, std::span<const double>) {
     gb_[i] = g_[i];
   }
   time_ = ctx.time;
+  if (!restored_ && !ctx.face_flux.empty()) capped_ = capped;
+  if (capped > 0 && !warned_) {
+    const Vector3& x = ctx.mesh.face_centres()[first];
+    spdlog::warn("curvedSlipWall on patch '{}': {} wall faces are too coarse for the wall's curvature (kappa d up to "
+                 "{:.3g} against 1/2, first at ({:.4g}, {:.4g}, {:.4g}) m): their pressure gradient is capped at half "
+                 "the tangential dynamic head over d, and the pressure there is not resolved; refine the wall cells "
+                 "(docs/formulation.md section 4.6)",
+                 patch.name, capped, worst, x.x(), x.y(), x.z());
+    warned_ = true;
+  }
 }
 
 std::vector<double> CurvedWallPressure::State() const {

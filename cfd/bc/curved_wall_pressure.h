@@ -26,7 +26,8 @@
 // condition. S = grad_s n comes from cfd/bc/wall_curvature.h (zero at sharp
 // edges: no finite curvature to correct with). |g| d is capped at half the
 // tangential dynamic head u_t^2 / 2, past which the cell is too coarse for the wall's
-// radius (kappa d > 1/2) and the Taylor step would overshoot.
+// radius (kappa d > 1/2) and the Taylor step would overshoot; the first
+// update that caps a face warns (the wall is under-resolved there).
 //
 // g is explicit in the velocity, and the wall cell's velocity answers a
 // change of its wall pressure within a step: at large time steps the loop
@@ -70,6 +71,8 @@ class CurvedWallPressure : public BoundaryCondition<double> {
   // faces those of the whole patch on every MPI rank (collective there).
   std::vector<double> State() const override;
   void SetState(std::span<const double> state) override;
+  // Faces of this mesh whose gradient the last update capped (kappa d > 1/2).
+  int capped_faces() const { return capped_; }
 
  private:
   std::vector<Eigen::Matrix3d> body_shape_;  // S of each face in the body frame (S_E = R S R^T)
@@ -81,6 +84,8 @@ class CurvedWallPressure : public BoundaryCondition<double> {
   double time_ = std::numeric_limits<double>::quiet_NaN();       // ctx.time of g_
   double step_time_ = std::numeric_limits<double>::quiet_NaN();  // time of g_step_
   bool restored_ = false;  // g_ comes from a checkpoint: use it as it is at its own time
+  int capped_ = 0;
+  bool warned_ = false;
 };
 
 }  // namespace kelvin::cfd

@@ -41,11 +41,11 @@ Vector3 ExactU(const Vector3& x) {
 }
 double ExactP(const Vector3& x) { return 0.5 * (kU * kU - ExactU(x).squaredNorm()); }
 
-// n_theta cells around the half circle; as many in r as keep them square.
-// Patches: xmin the cylinder, xmax the outer circle, ymin and ymax the two
-// halves of the symmetry line, zmin and zmax empty.
-Mesh HalfRing(int n_theta) {
-  const int n_r = static_cast<int>(std::lround(std::log(kOuter / kR) / (kPi / n_theta)));
+// n_theta cells around the half circle; as many in r as keep them square
+// (or n_r). Patches: xmin the cylinder, xmax the outer circle, ymin and ymax
+// the two halves of the symmetry line, zmin and zmax empty.
+Mesh HalfRing(int n_theta, int n_r = 0) {
+  if (n_r == 0) n_r = static_cast<int>(std::lround(std::log(kOuter / kR) / (kPi / n_theta)));
   BoxMeshOptions o;
   o.cells = {n_r, n_theta, 1};
   o.max = Vector3(1.0, 1.0, 0.1);
@@ -252,6 +252,34 @@ TEST(CurvedWallPressure, RestartIsBitIdentical) {
   for (int c = 0; c < mesh.n_cells(); ++c)
     differs = std::max(differs, std::abs(straight->p()[c] - forgetful->p()[c]));
   EXPECT_GT(differs, 0.0);
+}
+
+// A wall whose cells are too thick for its curvature (kappa d > 1/2: 32
+// faces around the half circle, but 2 cells from R to 4 R, the wall cells'
+// centres 0.56 R from the wall) has its gradient capped and counted (the run warns);
+// with square cells (kappa d 0.05) nothing is capped.
+TEST(CurvedWallPressure, CountsTheFacesTooCoarseForTheCurvature) {
+  for (const int n_r : {2, 0}) {
+    const Mesh mesh = HalfRing(32, n_r);
+    const int wall = mesh.FindPatch("xmin");
+    const Patch& patch = mesh.patches()[wall];
+    CurvedWallPressure bc(mesh, wall);
+    std::vector<double> flux(mesh.n_faces());
+    for (int f = 0; f < mesh.n_faces(); ++f) flux[f] = Vector3(kU, 0.0, 0.0).dot(mesh.face_areas()[f]);
+    bc.Update(BcContext{mesh, patch, 0.0, flux}, {});
+    const int f = patch.start;
+    const Vector3 n = mesh.face_areas()[f] / mesh.face_area_magnitudes()[f];
+    const double kappa_d = n.dot(mesh.face_centres()[f] - mesh.cell_centres()[mesh.owner()[f]]) / kR;
+    std::printf("%d cells in r: kappa d %.3f, %d of %d wall faces capped\n", mesh.n_cells() / 32, kappa_d,
+                bc.capped_faces(), patch.size);
+    if (n_r == 2) {
+      EXPECT_GT(kappa_d, 0.5);
+      EXPECT_EQ(bc.capped_faces(), patch.size);
+    } else {
+      EXPECT_LT(kappa_d, 0.1);
+      EXPECT_EQ(bc.capped_faces(), 0);
+    }
+  }
 }
 
 // Bad input: the condition belongs to a slip wall, and says so.
