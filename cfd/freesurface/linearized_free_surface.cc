@@ -313,15 +313,16 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
   }
   // ... and the advection relative to the mesh, c = -u_b or the local flow,
   // in conservative form on the edges (flux q_e = c . n_e |e| out of
-  // edge.face).
-  if (options_.mesh_velocity || !base_velocity_.empty()) {
+  // edge.face). (A base flow read from the checkpoint of a local-flow run
+  // does not advect a uniform-stream one.)
+  const bool local = LocalFlow(options_);
+  if (local ? !base_velocity_.empty() : static_cast<bool>(options_.mesh_velocity)) {
     const auto& edges = surface_.edges();
     edge_flux_.resize(edges.size());
     // The local flow does not cross a wall (the hull's waterline, where the
     // uniform stream does and eta is extrapolated): no flux there. The
     // extrapolated cell velocity would leave some, of either sign, and an
     // inflow across the waterline lowers the implicit diagonal.
-    const bool local = LocalFlow(options_);
     auto wall = [&](const PatchSurface::Edge& edge) {
       return edge.neighbour < 0 && edge.rim_patch >= 0 && mesh_.patches()[edge.rim_patch].kind == PatchKind::kWall;
     };
@@ -428,7 +429,6 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
     // inflow exceeds the outflow, eta grows at the rate of the difference
     // (the eta div_h u_h part of the condition), and the rate is raised by
     // it, so that the diagonal exceeds the inflow by the same margin.
-    const bool local = LocalFlow(options_);
     for (int i = 0; i < n; ++i) {
       const double outflow = diag[i] - a_t / dt - mu_[i];
       const double rate = local && !inflow_.empty() && inflow_[i] > outflow

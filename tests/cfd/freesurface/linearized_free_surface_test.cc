@@ -564,6 +564,29 @@ TEST(LinearizedFreeSurface, StateRoundTripAndWrongSize) {
   b.SetState(old_layout);
   EXPECT_FALSE(b.rigid_lid());
   EXPECT_EQ(b.eta(), a.eta());
+
+  // The local flow's base flow travels with the state once it is set; a
+  // uniform-stream condition without a mesh velocity reads that state and
+  // advects nothing with it.
+  LinearizedFreeSurfaceOptions local;
+  local.linearization = LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
+  LinearizedFreeSurface c(mesh, top, local), d(mesh, top, local);
+  std::vector<double> stream(mesh.n_faces());
+  for (int f = 0; f < mesh.n_faces(); ++f) stream[f] = Vector3(0.3, 0.1, 0.0).dot(mesh.face_areas()[f]);
+  const BcContext ctx{mesh, mesh.patches()[top], 0.5, stream};
+  c.Update(ctx, {});
+  c.PreparePressureSolve(ctx, PressureCoupling{0.5, false, zero, zero});
+  ASSERT_GT(c.State().size(), a.State().size());
+  d.SetState(c.State());
+  EXPECT_EQ(d.State(), c.State());
+  std::vector<double> truncated = c.State();
+  truncated.pop_back();
+  EXPECT_THROW(d.SetState(truncated), DataFileError);
+  b.SetState(c.State());
+  b.Update(ctx, {});
+  b.PreparePressureSolve(ctx, PressureCoupling{0.5, false, zero, zero});
+  b.CorrectAfterFlux(ctx, zero);
+  EXPECT_EQ(b.eta(), c.eta());
 }
 
 // A rigid lid passes no flux and keeps eta, so a displaced surface stays
