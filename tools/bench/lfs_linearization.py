@@ -12,6 +12,8 @@ Fn 0.316 (wigley_fn0316.yaml, wigley_double_body.yaml; C_W against Michell's thi
 R_W = R_P - R_P(db) on the same grid. Writes the section `lfs_linearization` of BENCHMARKS.md.
 
 The grids are expected under --grids (kelvin mesh data/cases/resistance/dtc_mesh.yaml and wigley_mesh.yaml).
+The section also tabulates the DTC three-grid family, from the `kelvin gci` reports that tools/bench/dtc_family.sh
+leaves under --family-runs (each case with a report; none without the double body's).
 
 Usage: tools/bench/lfs_linearization.py [--kelvin build/ci/tools/kelvin] [--hulls dtc,wigley] [--runs LABELS]
        [--report-only] [--write] [--results DIR]
@@ -21,9 +23,11 @@ import datetime
 import os
 import sys
 
+import h5py
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from case_variants import ROOT, variant_case  # noqa: E402
-from lfs_resistance_bench import DTC_RT_EXP, failure, michell_cw, read, run_case  # noqa: E402
+from lfs_resistance_bench import DTC_RT_EXP, failure, michell_cw, read, read_gci, run_case  # noqa: E402
 from pimple_vs_openfoam import write_or_print  # noqa: E402
 
 NAME = "lfs_linearization"
@@ -44,7 +48,7 @@ def run(kelvin, label, case, overrides, results):
     run_case(kelvin, label, results, path)
 
 
-def section(rows, results):
+def section(rows, results, family=None):
     by = {r["name"]: r for r in rows}
     lines = ["## lfs_linearization: the kinematic condition's two linearizations side by side (issue #22, "
              "acceptance 2 and 3)\n",
@@ -79,7 +83,75 @@ def section(rows, results):
     if dtc:
         lines.append(f"\nDTC R_T with the local flow: {dtc['R_T']:.3f} N, {dtc['R_T'] / DTC_RT_EXP:.3f} of the measured "
                      f"{DTC_RT_EXP} N (el Moctar, Shigunov & Zorn 2012).")
+    lines.extend(family_lines(family) if family else [])
     return "\n".join(lines) + "\n"
+
+
+# The DTC three-grid family (tools/bench/dtc_family.sh: `kelvin gci` of each case on
+# data/cases/mesh/dtc_snappy.yaml --family 3), the double body first.
+FAMILY = [("dtc_fine_double_body", "double body"), ("dtc_fine_lfs", "uniform_stream"),
+          ("dtc_fine_lfs_local", "local_flow")]
+FAMILY_Q = 0.5 * 998.8 * 1.668 ** 2 * 6.2428  # rho U^2 S / 2 of the cases (N per unit coefficient)
+
+
+def deepest_trough(run_dir):
+    """The lowest surface elevation of a run (m) and where, from its resistance.h5, or None."""
+    path = os.path.join(run_dir, "resistance.h5")
+    if not os.path.isfile(path):
+        return None
+    with h5py.File(path, "r") as f:
+        if "surface/eta" not in f:
+            return None
+        eta, x, y = f["surface/eta"][:], f["surface/x"][:], f["surface/y"][:]
+    k = int(eta.argmin())
+    return eta[k], x[k], y[k]
+
+
+def family_lines(runs):
+    """The family table of every case with a gci.h5 under `runs`; [] without the double body's."""
+    data = {name: read_gci(os.path.join(runs, name, "gci.h5")) for name, _ in FAMILY
+            if os.path.isfile(os.path.join(runs, name, "gci.h5"))}
+    if FAMILY[0][0] not in data:
+        return []
+    db = data[FAMILY[0][0]]
+    q = FAMILY_Q
+    lines = ["\n### The DTC three-grid family (`kelvin gci`)\n",
+             "`tools/bench/dtc_family.sh`: `kelvin gci` of `dtc_fine_double_body.yaml`, `dtc_fine_lfs.yaml` and the "
+             "same with `linearization: local_flow` on the grids of `kelvin mesh data/cases/mesh/dtc_snappy.yaml "
+             f"--family 3`. R = C q with q = {q:.1f} N; R_W = R_P - R_P(double body) on the same grid; measured "
+             f"R_T {DTC_RT_EXP} N and R_W {DTC_RW_EXP} N. The deepest trough is the lowest eta of the run's surface "
+             "(U^2/2g = 0.142 m).\n",
+             "| grid | cells | case | R_T (N) | R_T / 31.83 | R_F (N) | R_P (N) | R_W (N) | deepest trough (m, at x, y) | "
+             "steps | settled | CPU s |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for g in range(len(db["cells"])):
+        for name, label in FAMILY:
+            d = data.get(name)
+            if d is None:
+                continue
+            ct, cf, cp = (d[o]["values"][g] for o in ("C_T", "C_F", "C_P"))
+            rw = "" if d is db else f"{(cp - db['C_P']['values'][g]) * q:+.3f}"
+            trough = deepest_trough(os.path.join(runs, name, f"grid{g + 1}"))
+            where = "" if trough is None else f"{trough[0]:+.3f} at ({trough[1]:.2f}, {trough[2]:.2f})"
+            lines.append(f"| {g + 1} | {int(d['cells'][g])} | {label} | {ct * q:.3f} | {ct * q / DTC_RT_EXP:.3f} | "
+                         f"{cf * q:.3f} | {cp * q:.3f} | {rw} | {where} | {int(d['steps'][g])} | "
+                         f"{'yes' if d['settled'][g] else '**no**'} | {d['cpu'][g]:.0f} |")
+    lines += ["", "| case | output | R | convergence | p | extrapolated (N) | extrapolated / 31.83 | GCI_fine |",
+              "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for name, label in FAMILY:
+        d = data.get(name)
+        if d is None:
+            lines.append(f"| {label} | | not run on this family | | | | | |")
+            continue
+        for out in ("C_T", "C_P"):
+            o = d[out]
+            if o["convergence"] == "divergent":
+                lines.append(f"| {label} | {out} | {o['R']:.3f} | divergent | | | | |")
+                continue
+            ratio = f"{o['extrapolated'] * q / DTC_RT_EXP:.3f}" if out == "C_T" else ""
+            lines.append(f"| {label} | {out} | {o['R']:.3f} | {o['convergence']} | {o['p']:.2f} | "
+                         f"{o['extrapolated'] * q:.3f} | {ratio} | {100 * o['gci_fine']:.2f}% |")
+    return lines
 
 
 def main():
@@ -88,6 +160,8 @@ def main():
     ap.add_argument("--results", default=os.path.join(ROOT, "build", "bench", NAME))
     ap.add_argument("--grids", default=os.path.join(ROOT, "build", "grids"))
     ap.add_argument("--hulls", default="dtc,wigley")
+    ap.add_argument("--family-runs", default=os.path.join(ROOT, "build", "bench", "dtc_family"),
+                    help="the runs of tools/bench/dtc_family.sh, for the three-grid table")
     ap.add_argument("--report-only", action="store_true")
     ap.add_argument("--runs", default="", help="comma-separated labels to run again (default: every run of --hulls)")
     ap.add_argument("--write", nargs="?", const=os.path.join(ROOT, "BENCHMARKS.md"), default=None,
@@ -108,7 +182,7 @@ def main():
                     run(args.kelvin, label, case, overrides, args.results)
     rows = [r for runs in RUNS.values() for label, _, _ in runs
             if (r := read(label, args.results, args.grids)) is not None]
-    write_or_print(args.write, NAME, section(rows, args.results))
+    write_or_print(args.write, NAME, section(rows, args.results, args.family_runs))
 
 
 if __name__ == "__main__":

@@ -196,6 +196,21 @@ def implied_wave_table(by, nu=1.14e-6, g=9.81, lengths=(2.0, 3.0, 4.0, 6.0, 8.0,
     return lines
 
 
+def read_gci(path):
+    """A `kelvin gci` report of C_T, C_F and C_P: per grid (finest first) the cells, steps, CPU time, outer
+    iterations and whether the run settled; per output its values and the Richardson analysis."""
+    with h5py.File(path, "r") as f:
+        d = {"cells": f["grids/cells"][:], "steps": f["grids/steps"][:], "cpu": f["grids/cpu_time"][:],
+             "iters": f["grids/outer_iterations"][:], "settled": f["grids/steady_converged"][:]}
+        for out in ("C_T", "C_F", "C_P"):
+            g = f["outputs/" + out]
+            d[out] = {k: g[k][:] if k == "values" else float(g[k][0])
+                      for k in ("values", "R", "p", "extrapolated", "gci_fine", "gci_coarse", "asymptotic_ratio")}
+            conv = g.attrs["convergence"]
+            d[out]["convergence"] = conv.decode() if isinstance(conv, bytes) else str(conv)
+    return d
+
+
 def family_section(runs):
     """DTC at 1.668 m/s on the three snappyHexMesh grids of data/cases/mesh/dtc_snappy.yaml --family 3: the
     free-surface case dtc_fine_lfs.yaml and its double body dtc_fine_double_body.yaml run by `kelvin gci` (reports
@@ -203,18 +218,7 @@ def family_section(runs):
     reports = {name: os.path.join(runs, name, "gci.h5") for name in ("dtc_fine_lfs", "dtc_fine_double_body")}
     if not all(os.path.isfile(f) for f in reports.values()):
         return []
-    data = {}
-    for name, path in reports.items():
-        with h5py.File(path, "r") as f:
-            d = {"cells": f["grids/cells"][:], "steps": f["grids/steps"][:], "cpu": f["grids/cpu_time"][:],
-                 "iters": f["grids/outer_iterations"][:], "settled": f["grids/steady_converged"][:]}
-            for out in ("C_T", "C_F", "C_P"):
-                g = f["outputs/" + out]
-                d[out] = {k: g[k][:] if k == "values" else float(g[k][0])
-                          for k in ("values", "R", "p", "extrapolated", "gci_fine", "gci_coarse", "asymptotic_ratio")}
-                conv = g.attrs["convergence"]
-                d[out]["convergence"] = conv.decode() if isinstance(conv, bytes) else str(conv)
-        data[name] = d
+    data = {name: read_gci(path) for name, path in reports.items()}
     q = 0.5 * 998.8 * 1.668 ** 2 * 6.2428  # rho U^2 S / 2 of the cases (N per unit coefficient)
     lfs, db = data["dtc_fine_lfs"], data["dtc_fine_double_body"]
     lines = ["\n### DTC on a three-grid family: free surface and double body (`kelvin gci`)\n",
