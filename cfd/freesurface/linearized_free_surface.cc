@@ -271,7 +271,10 @@ void LinearizedFreeSurface::SetBaseFlow(const BcContext& ctx) {
   for (int i = 0; i < n; ++i) base_velocity_[i] = Vector3(all_u[i], all_v[i], 0.0);
   // The edge fluxes: the velocity interpolated linearly between the two
   // face centres, and on the rim extrapolated from the face by its
-  // least-squares gradient.
+  // least-squares gradient. The local flow does not cross a wall (the hull's
+  // waterline, where the uniform stream does and eta is extrapolated): no
+  // flux there. The extrapolated cell velocity would leave some, of either
+  // sign, and an inflow across the waterline lowers the implicit diagonal.
   std::vector<Vector3> gu, gv;
   surface_.Gradient(all_u, gu);
   surface_.Gradient(all_v, gv);
@@ -280,6 +283,11 @@ void LinearizedFreeSurface::SetBaseFlow(const BcContext& ctx) {
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const auto& edge = edges[e];
     const int a = edge.face;
+    const bool wall = edge.rim_patch >= 0 && mesh_.patches()[edge.rim_patch].kind == PatchKind::kWall;
+    if (edge.neighbour < 0 && (extrapolate_rim_[e] || wall)) {
+      base_edge_flux_[e] = 0.0;
+      continue;
+    }
     Vector3 c;
     if (edge.neighbour < 0) {
       const Vector3 d = edge.centre - surface_.centres()[a];
@@ -318,20 +326,12 @@ void LinearizedFreeSurface::AssembleKinematic(double t, double dt, bool bdf2, st
   const bool local = LocalFlow(options_);
   if (local ? !base_velocity_.empty() : static_cast<bool>(options_.mesh_velocity)) {
     const auto& edges = surface_.edges();
-    edge_flux_.resize(edges.size());
-    // The local flow does not cross a wall (the hull's waterline, where the
-    // uniform stream does and eta is extrapolated): no flux there. The
-    // extrapolated cell velocity would leave some, of either sign, and an
-    // inflow across the waterline lowers the implicit diagonal.
-    auto wall = [&](const PatchSurface::Edge& edge) {
-      return edge.neighbour < 0 && edge.rim_patch >= 0 && mesh_.patches()[edge.rim_patch].kind == PatchKind::kWall;
-    };
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      const bool closed = local && edges[e].neighbour < 0 && (extrapolate_rim_[e] || wall(edges[e]));
-      if (closed) {
-        edge_flux_[e] = 0.0;
-      } else {
-        edge_flux_[e] = local ? base_edge_flux_[e] : -options_.mesh_velocity(edges[e].centre, t).dot(edges[e].normal);
+    if (local) {
+      edge_flux_ = base_edge_flux_;
+    } else {
+      edge_flux_.resize(edges.size());
+      for (std::size_t e = 0; e < edges.size(); ++e) {
+        edge_flux_[e] = -options_.mesh_velocity(edges[e].centre, t).dot(edges[e].normal);
       }
     }
     using Advection = LinearizedFreeSurfaceOptions::Advection;
