@@ -27,7 +27,7 @@ import h5py
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from case_variants import ROOT, variant_case  # noqa: E402
-from lfs_resistance_bench import DTC_RT_EXP, failure, michell_cw, read, read_gci, run_case  # noqa: E402
+from lfs_resistance_bench import DTC_FAMILY_Q, DTC_RT_EXP, failure, michell_cw, read, read_gci, run_case  # noqa: E402
 from pimple_vs_openfoam import write_or_print  # noqa: E402
 
 NAME = "lfs_linearization"
@@ -91,7 +91,6 @@ def section(rows, results, family=None):
 # data/cases/mesh/dtc_snappy.yaml --family 3), the double body first.
 FAMILY = [("dtc_fine_double_body", "double body"), ("dtc_fine_lfs", "uniform_stream"),
           ("dtc_fine_lfs_local", "local_flow")]
-FAMILY_Q = 0.5 * 998.8 * 1.668 ** 2 * 6.2428  # rho U^2 S / 2 of the cases (N per unit coefficient)
 
 
 def deepest_trough(run_dir):
@@ -114,7 +113,7 @@ def family_lines(runs):
     if FAMILY[0][0] not in data:
         return []
     db = data[FAMILY[0][0]]
-    q = FAMILY_Q
+    q = DTC_FAMILY_Q
     lines = ["\n### The DTC three-grid family (`kelvin gci`)\n",
              "`tools/bench/dtc_family.sh`: `kelvin gci` of `dtc_fine_double_body.yaml`, `dtc_fine_lfs.yaml` and the "
              "same with `linearization: local_flow` on the grids of `kelvin mesh data/cases/mesh/dtc_snappy.yaml "

@@ -58,6 +58,8 @@ WIGLEY_EXP = {"wigley_fn0250": (0.250, 3.340e-3), "wigley_fn0316": (0.316, 3.620
               "wigley_fn0408": (0.408, 4.090e-3)}
 # el Moctar, Shigunov & Zorn (2012), Table 4: model 1:59.407 at 1.668 m/s.
 DTC_RT_EXP = 31.83
+# rho U^2 S / 2 of the DTC family's cases (dtc_fine_*.yaml): N per unit coefficient.
+DTC_FAMILY_Q = 0.5 * 998.8 * 1.668 ** 2 * 6.2428
 PEER_US_PER_CELL_ITER = 3.1  # OpenFOAM simpleFoam SST double body, peers README
 ORDER = ["wigley_double_body", "wigley_fn0250", "wigley_fn0316", "wigley_fn0408", "dtc_double_body", "dtc_lfs",
          "dtc_lfs_cfl10", "dtc_fine_double_body", "dtc_fine_lfs"]
@@ -219,7 +221,7 @@ def family_section(runs):
     if not all(os.path.isfile(f) for f in reports.values()):
         return []
     data = {name: read_gci(path) for name, path in reports.items()}
-    q = 0.5 * 998.8 * 1.668 ** 2 * 6.2428  # rho U^2 S / 2 of the cases (N per unit coefficient)
+    q = DTC_FAMILY_Q
     lfs, db = data["dtc_fine_lfs"], data["dtc_fine_double_body"]
     lines = ["\n### DTC on a three-grid family: free surface and double body (`kelvin gci`)\n",
              "`kelvin mesh data/cases/mesh/dtc_snappy.yaml --family 3` (snappyHexMesh, ratio sqrt 2 in the base "
