@@ -1,6 +1,7 @@
 #include "cfd/freesurface/linearized_free_surface.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
@@ -532,6 +533,17 @@ void LinearizedFreeSurface::SetState(std::span<const double> s) {
     for (std::size_t i = 0; i < n; ++i) base_velocity_.emplace_back(s[e0 + edges + 2 * i], s[e0 + edges + 2 * i + 1], 0.0);
   }
   armed_ = false;
+  // A released surface with waves and no base flow (the checkpoint of a
+  // uniform-stream run): the next pressure solve's flow, waves and all,
+  // becomes the base flow.
+  const bool waves = std::any_of(eta_.begin(), eta_.end(), [](double e) { return e != 0.0; });
+  if (LocalFlow(options_) && !with_base && !rigid_lid_ && waves && (!part_ || part_->rank == 0)) {
+    spdlog::warn("free surface '{}': linearization local_flow restarted from a checkpoint of a released surface "
+                 "without a base flow (written by a uniform_stream run?): the kinematic condition is linearized about "
+                 "the restarted run's first flow, waves included, not about a double body; restart from a rigid-lid "
+                 "or double-body checkpoint (docs/formulation.md section 3.1)",
+                 surface_.name());
+  }
 }
 
 void LinearizedFreeSurface::SetEta(std::span<const double> eta) {

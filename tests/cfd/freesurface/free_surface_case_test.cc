@@ -137,6 +137,38 @@ TEST(FreeSurfaceCase, LocalFlowRunRestartsBitForBit) {
   ExpectRestartBitForBit(tmp / "out" / "checkpoint.h5", text);
 }
 
+// A local-flow run restarted from a uniform-stream checkpoint taken after
+// the release finds waves and no base flow to keep: it says so. The same
+// restart as a uniform-stream run is silent.
+TEST(FreeSurfaceCase, LocalFlowRestartFromAUniformStreamCheckpointWarns) {
+  auto local = [](double end) {
+    return Replace(CaseText(end), "      advection: quick\n", "      advection: quick\n      linearization: local_flow\n");
+  };
+  kelvin::testing::ScopedTempDir tmp;
+  RunOptions o;
+  o.progress = false;
+  ASSERT_EQ(RunCase(WriteCase(tmp.path(), CaseText(0.5)), o).status, RunSummary::Status::kCompleted);
+  RunOptions restart = o;
+  restart.restart = tmp / "out" / "checkpoint.h5";
+  auto restarted_log = [&](const std::string& text, const char* out) {
+    std::ostringstream log;
+    const auto previous = spdlog::default_logger();
+    spdlog::set_default_logger(
+        std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+    restart.output_override = tmp / out;
+    const RunSummary s = RunCase(WriteCase(tmp.path(), text), restart);
+    spdlog::set_default_logger(previous);
+    EXPECT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+    return log.str();
+  };
+  const std::string warned = restarted_log(local(1.0), "local");
+  EXPECT_NE(warned.find("restarted from a checkpoint of a released surface without a base flow"), std::string::npos)
+      << warned;
+  EXPECT_EQ(warned.find("without time.rigid_lid_windows"), std::string::npos) << warned;  // a restart: not that one
+  const std::string silent = restarted_log(CaseText(1.0), "uniform");
+  EXPECT_EQ(silent.find("without a base flow"), std::string::npos) << silent;
+}
+
 TEST(FreeSurfaceCase, UnknownLinearizationIsAnError) {
   ExpectCaseConfigError(Replace(CaseText(), "      advection: quick\n", "      linearization: dawson\n"), "dawson");
 }
