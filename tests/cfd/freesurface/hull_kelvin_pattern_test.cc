@@ -237,7 +237,11 @@ TEST_F(HullKelvinPattern, WigleyFn0316WavelengthWedgeAndNoUpstreamWaves) {
 
 // The kinematic condition linearized about the local (double-body) flow
 // (docs/formulation.md section 3.1): the pattern behind the hull is still
-// the Kelvin pattern of the free stream (issue 22, acceptance 3).
+// the Kelvin pattern of the free stream (issue 22, acceptance 3). Measured
+// 2026-12-07 (17 minutes, one core): wavelength 3.8618 m, +2.58% against
+// 2 pi U^2 / g (the uniform stream's run on this grid: +2.1%), peak behind
+// 0.0613 m (thin ship 0.0623 m), 95% of the wave energy within 21.1 deg of
+// the bow (thin ship 20.4 deg), upstream 0.044 of the peak, one sign.
 TEST_F(HullKelvinPattern, LocalFlowWigleyFn0316WavelengthWedgeAndNoUpstreamWaves) {
   ExpectKelvinPattern(cases_->Run("wigley_pattern_fn0316", *grid_, "wigley_pattern", "local_flow",
                                   {{"      advection: quick\n",
