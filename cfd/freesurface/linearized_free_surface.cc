@@ -201,6 +201,8 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
   // The local flow's base flow follows the flow under the lid and stays as
   // it was when the surface is released.
   if (LocalFlow(options_) && (rigid_lid_ || base_velocity_.empty())) SetBaseFlow(ctx);
+  // Once frozen (released, or read from a checkpoint), the base flow is checked once.
+  if (LocalFlow(options_) && !rigid_lid_ && !base_velocity_.empty() && amplifying_faces_ < 0) ReportAmplifyingFaces();
   if (rigid_lid_) {
     // Zero flux: the normal pressure gradient balances the predicted flux,
     // F_f = F_HbyA,f - rAU_f |S_f| dp/dn = 0.
@@ -467,7 +469,76 @@ void LinearizedFreeSurface::CorrectAfterFlux(const BcContext&, std::span<const d
 }
 
 std::vector<std::pair<std::string, std::vector<double>>> LinearizedFreeSurface::FaceFields() const {
-  return {{"eta", eta_}, {"beach_damping", mu_}};
+  std::vector<std::pair<std::string, std::vector<double>>> fields = {{"eta", eta_}, {"beach_damping", mu_}};
+  if (base_velocity_.empty()) return fields;
+  // The local flow's base flow, its horizontal divergence (the rate at which
+  // the conservative form feeds eta where it converges) and each face's
+  // inflow over outflow.
+  const int n = surface_.size();
+  std::vector<double> u(n), v(n), divergence(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    u[i] = base_velocity_[i].x();
+    v[i] = base_velocity_[i].y();
+  }
+  const auto& edges = surface_.edges();
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    divergence[edges[e].face] += base_edge_flux_[e];
+    if (edges[e].neighbour >= 0) divergence[edges[e].neighbour] -= base_edge_flux_[e];
+  }
+  for (int i = 0; i < n; ++i) divergence[i] /= surface_.areas()[i];
+  fields.emplace_back("base_flow_x", std::move(u));
+  fields.emplace_back("base_flow_y", std::move(v));
+  fields.emplace_back("base_flow_divergence", std::move(divergence));
+  fields.emplace_back("base_flow_gain", BaseFlowGains());
+  return fields;
+}
+
+std::vector<double> LinearizedFreeSurface::BaseFlowGains() const {
+  const int n = surface_.size();
+  std::vector<double> in(n, 0.0), out(n, 0.0), gain(n, 0.0);
+  if (base_edge_flux_.empty()) return gain;
+  const auto& edges = surface_.edges();
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const double q = base_edge_flux_[e];
+    const int a = edges[e].face, b = edges[e].neighbour;
+    if (q > 0.0) {
+      out[a] += q;
+      if (b >= 0) in[b] += q;
+    } else if (b >= 0) {
+      out[b] -= q;
+      in[a] -= q;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    gain[i] = out[i] > 0.0 ? in[i] / out[i] : (in[i] > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  }
+  return gain;
+}
+
+void LinearizedFreeSurface::ReportAmplifyingFaces() {
+  const std::vector<double> gain = BaseFlowGains();
+  amplifying_faces_ = 0;
+  int worst = -1, at_wall = 0;
+  std::vector<char> wall_face(gain.size(), 0);
+  for (const auto& edge : surface_.edges()) {
+    if (edge.neighbour < 0 && edge.rim_patch >= 0 && mesh_.patches()[edge.rim_patch].kind == PatchKind::kWall) {
+      wall_face[edge.face] = 1;
+    }
+  }
+  for (std::size_t i = 0; i < gain.size(); ++i) {
+    if (gain[i] <= kAmplifyingGain) continue;
+    ++amplifying_faces_;
+    at_wall += wall_face[i];
+    if (worst < 0 || gain[i] > gain[worst]) worst = static_cast<int>(i);
+  }
+  if (amplifying_faces_ == 0 || (part_ && part_->rank != 0)) return;
+  const Vector3& x = surface_.centres()[worst];
+  spdlog::warn("free surface '{}': the local flow's base flow converges into {} surface faces ({} of them beside a "
+               "wall) more than {:g} times as fast as it carries eta out, up to {:.3g} times at ({:.4g}, {:.4g}) m: the "
+               "linearization about that flow amplifies eta there, and the elevation in those faces is not a wave "
+               "(a one-face trough or crest along the hull, and the wave resistance with it); field base_flow_gain "
+               "shows them; compare with linearization uniform_stream (docs/formulation.md section 3.1)",
+               surface_.name(), amplifying_faces_, at_wall, kAmplifyingGain, gain[worst], x.x(), x.y());
 }
 
 std::vector<double> LinearizedFreeSurface::State() const {
@@ -501,6 +572,7 @@ void LinearizedFreeSurface::SetState(std::span<const double> s) {
     base_edge_flux_.clear();
     started_ = false;
     armed_ = false;
+    amplifying_faces_ = -1;
     return;
   }
   // Header of 4 values (with the rigid-lid flag) or 3 (older checkpoints);
@@ -533,6 +605,7 @@ void LinearizedFreeSurface::SetState(std::span<const double> s) {
     for (std::size_t i = 0; i < n; ++i) base_velocity_.emplace_back(s[e0 + edges + 2 * i], s[e0 + edges + 2 * i + 1], 0.0);
   }
   armed_ = false;
+  amplifying_faces_ = -1;
   // A released surface with waves and no base flow (the checkpoint of a
   // uniform-stream run): the next pressure solve's flow, waves and all,
   // becomes the base flow.

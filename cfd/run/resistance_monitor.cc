@@ -228,6 +228,19 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Hu
     Scalar(w, "C_WL", rwl / q, "1", "R_WL / (0.5 rho S U^2)");
     summary += fmt::format("; waterline correction (separate) R_WL = {:.4g} N, C_WL = {:.3e}", rwl, rwl / q);
     WriteWaves(w, *free_surface_, hull_, options_);
+    if (const int n = free_surface_->amplifying_faces(); n >= 0) {
+      Scalar(w, "amplifying_faces", n, "1",
+             "local flow: surface faces whose base flow converges more than 2 times as fast as it carries eta out");
+      if (n > 0) {
+        const std::string warning = fmt::format(
+            "WARNING: the local flow's base flow amplifies eta in {} surface faces (field base_flow_gain above {:g}): "
+            "the elevation there and R_P, R_T with it are not those of waves; compare with linearization "
+            "uniform_stream",
+            n, LinearizedFreeSurface::kAmplifyingGain);
+        spdlog::warn("{}", warning);
+        summary += "\n  " + warning;
+      }
+    }
   }
   w.Commit();
   return summary + FrictionWarning();

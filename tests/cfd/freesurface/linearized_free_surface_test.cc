@@ -501,6 +501,35 @@ TEST(LinearizedFreeSurface, LocalFlowKeepsTheBaseFlowOfTheRigidLid) {
   EXPECT_LT(worst_uniform, 1e-12);
 }
 
+// A stream slowing almost to rest at the outflow edge, u = 1 - 0.2475 x on
+// 0 <= x <= 4: the base flow of the last column of faces (x = 3.9 to 4)
+// comes in at u(3.9) = 0.03475 and leaves at u(4) = 0.01, 3.5 times faster
+// in than out, and the column before it 1.7 times: the last column's two
+// faces are counted, once the base flow is frozen (-1 before). The slowing
+// stream of the other tests (at most 1.05 times) has none.
+TEST(LinearizedFreeSurface, LocalFlowCountsTheFacesItsBaseFlowAmplifies) {
+  SteadyStream s;
+  LinearizedFreeSurfaceOptions o;
+  o.linearization = LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
+  const int top = s.mesh.FindPatch("zmax");
+  EXPECT_EQ(LinearizedFreeSurface(s.mesh, top, o).amplifying_faces(), -1);
+  s.Eta(o, s.Flow(-0.2475));
+  EXPECT_EQ(s.bc->amplifying_faces(), 2);
+  const auto fields = s.bc->FaceFields();
+  const auto gain = std::find_if(fields.begin(), fields.end(), [](const auto& f) { return f.first == "base_flow_gain"; });
+  ASSERT_NE(gain, fields.end());
+  for (int i = 0; i < s.bc->surface().size(); ++i) {
+    const double x = s.bc->surface().centres()[i].x();
+    // The first column's inflow crosses the rim with undisturbed water (eta = 0): nothing to amplify.
+    const double expected = x < 0.1 ? 0.0 : (1.0 - 0.2475 * (x - 0.05)) / (1.0 - 0.2475 * (x + 0.05));
+    EXPECT_NEAR(gain->second[i], expected, 1e-9) << "x " << x;
+  }
+  s.Eta(o, s.Flow(-SteadyStream::kA * 0.1));
+  EXPECT_EQ(s.bc->amplifying_faces(), 0);
+  s.Eta(o, s.Flow(SteadyStream::kA));
+  EXPECT_EQ(s.bc->amplifying_faces(), 0);
+}
+
 // In a uniform stream the two linearizations are the same condition: the
 // local flow of a mesh at rest in the stream U0 gives the elevation of the
 // uniform-stream form with the mesh moving at -U0 through still water.
