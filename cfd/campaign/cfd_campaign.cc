@@ -8,27 +8,23 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
-#include <numbers>
 #include <optional>
 #include <span>
 #include <thread>
 
 #include "cfd/campaign/appendage_run.h"
+#include "cfd/campaign/campaign_jobs.h"
 #include "cfd/campaign/run_samples.h"
 #include "cfd/campaign/worker_process.h"
 #include "cfd/parallel/domain_part.h"
 #include "cfd/run/captive_sampler.h"
 #include "cfd/run/run_driver.h"
-#include "data/report/progress.h"
 #include "data/schema/atomic_file.h"
 #include "data/schema/captive_io.h"
-#include "data/schema/captive_plan.h"
 #include "data/schema/config.h"
 #include "data/schema/errors.h"
 #include "data/schema/h5_file.h"
 #include "simulator/mmg/ship_parameters.h"
-
 
 namespace kelvin::cfd {
 namespace {
@@ -42,150 +38,6 @@ class RunDivergedError : public InputError {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-struct Job {
-  enum class State { kLeft, kRunning, kDone, kFailed };
-  std::string name;
-  data::MotionParameters motion;  // as the captive schema records it
-  MotionOptions cfd_motion;
-  double dt = 0.0;
-  int steps = 0;
-  fs::path dir;
-  // Steady runs: the criterion that ends them (none: a fixed duration).
-  std::optional<SteadyOptions> settle;
-  // A run with the propeller and rudder (tests.appendages): fixed duration.
-  std::optional<data::AppendageTest> appendage;
-  State state = State::kLeft;
-  int step = 0;
-  std::string message;
-  pid_t pid = -1;
-  int starts = 0;  // worker processes started (DiedStartingMpi)
-};
-
-PrescribedMotion ToPrescribed(data::MotionKind kind) {
-  switch (kind) {
-    case data::MotionKind::kStaticDrift:
-      return PrescribedMotion::kStaticDrift;
-    case data::MotionKind::kPureSway:
-      return PrescribedMotion::kPureSway;
-    case data::MotionKind::kPureYaw:
-      return PrescribedMotion::kPureYaw;
-    case data::MotionKind::kYawDrift:
-      return PrescribedMotion::kYawDrift;
-    case data::MotionKind::kCircularMotion:
-      return PrescribedMotion::kCircularMotion;
-  }
-  return PrescribedMotion::kStaticDrift;
-}
-
-// The steady criterion of a steady run: X, Y, N / Lpp in ship axes over the
-// campaign's settle window, tested from the end of the ramp plus one window.
-SteadyOptions SettleCriterion(const data::CampaignFile& f, const data::CaptiveShip& ship,
-                              const data::MotionParameters& m) {
-  SteadyOptions o;
-  o.quantities = {SteadyQuantity::kShipLoads};
-  const double window =
-      f.cfd.settle_window > 0 ? f.cfd.settle_window : std::min(2.0 * ship.Lpp / m.U, f.cfd.steady_duration);
-  o.criterion.window = window;
-  o.criterion.window_steps = 5;
-  o.criterion.tolerance = f.cfd.settle_tolerance;
-  o.min_windows = (m.t_ramp + window) / window;
-  o.ship_load_arm = ship.Lpp;
-  return o;
-}
-
-std::vector<Job> PlanJobs(const data::CampaignFile& f, const data::CaptiveShip& ship,
-                          double case_dt) {
-  data::CampaignDesign design = f.design;
-  design.U = f.speed;
-  std::vector<Job> jobs;
-  for (const data::PlannedRun& run : data::PlanRuns(design, ship.Lpp, f.sampling)) {
-    Job job;
-    job.name = run.name;
-    job.motion = run.motion;
-    const data::MotionParameters& m = run.motion;
-    MotionOptions& o = job.cfd_motion;
-    o.kind = ToPrescribed(m.kind);
-    o.speed = m.U;
-    o.drift_angle = m.beta;
-    o.sway_amplitude = m.y_a;
-    o.yaw_amplitude = m.psi_a;
-    o.period = data::IsHarmonic(m.kind) ? m.Period() : 0.0;
-    o.yaw_rate = m.r_prime * m.U / ship.Lpp;
-    // Harmonic runs ramp the motion up over motion_ramp_periods periods; the
-    // captive schema's t_ramp (what the analysis discards) stays
-    // ramp_periods periods. Both laws agree for t >= t_ramp.
-    o.ramp_time = data::IsHarmonic(m.kind) ? f.cfd.motion_ramp_periods * m.Period() : m.t_ramp;
-    o.centre = Vector3(f.cfd.centre[0], f.cfd.centre[1], f.cfd.centre[2]);
-    if (data::IsHarmonic(m.kind)) {
-      job.dt = o.period / f.cfd.steps_per_period;
-      job.steps = (f.sampling.ramp_periods + f.sampling.periods) * f.cfd.steps_per_period;
-    } else {
-      job.dt = case_dt;
-      job.steps =
-          static_cast<int>(std::llround((f.cfd.steady_ramp + f.cfd.steady_duration) / case_dt));
-      if (f.cfd.settle) job.settle = SettleCriterion(f, ship, m);
-    }
-    job.dir = f.cfd.directory / run.name;
-    jobs.push_back(std::move(job));
-  }
-  if (f.appendages) {
-    for (const data::AppendageTest& t : data::PlanAppendageTests(*f.appendages, f.speed, ship.Lpp)) {
-      Job job;
-      job.name = t.name;
-      job.appendage = t;
-      job.dt = case_dt;
-      job.steps = static_cast<int>(std::llround((f.cfd.steady_ramp + f.cfd.steady_duration) / case_dt));
-      job.dir = f.cfd.directory / t.name;
-      jobs.push_back(std::move(job));
-    }
-  }
-  return jobs;
-}
-
-void WriteProgressFile(const Job& job, double seconds) {
-  data::WriteFileAtomically(job.dir / "progress.txt",
-                            fmt::format("{} {} {:.3f}\n", job.step, job.steps, seconds));
-}
-
-// --- the progress table ------------------------------------------------------
-
-std::string StateName(Job::State s) {
-  switch (s) {
-    case Job::State::kLeft:
-      return "left";
-    case Job::State::kRunning:
-      return "running";
-    case Job::State::kDone:
-      return "done";
-    case Job::State::kFailed:
-      return "failed";
-  }
-  return "";
-}
-
-std::string Table(const std::vector<Job>& jobs, double elapsed, long computed) {
-  std::string out =
-      fmt::format("  {:<30} {:<16} {:<8} {:>13}\n", "run", "motion", "status", "steps");
-  int done = 0, running = 0, left = 0;
-  long remaining = 0;
-  for (const Job& j : jobs) {
-    out += fmt::format("  {:<30} {:<16} {:<8} {:>6}/{:<6}\n", j.name,
-                       j.appendage ? std::string_view("prop+rudder") : data::MotionKindName(j.motion.kind),
-                       StateName(j.state), j.step, j.steps);
-    done += j.state == Job::State::kDone;
-    running += j.state == Job::State::kRunning;
-    left += j.state == Job::State::kLeft;
-    if (j.state != Job::State::kDone) remaining += j.steps - j.step;
-  }
-  const std::string eta =
-      computed > 0 && elapsed > 0
-          ? FormatDuration(static_cast<double>(remaining) * elapsed / static_cast<double>(computed))
-          : std::string("unknown");
-  out += fmt::format("  {} done, {} running, {} left; {} steps to go, ETA {} (elapsed {})\n", done,
-                     running, left, remaining, eta, FormatDuration(elapsed));
-  return out;
-}
 
 // --- one run in this process -------------------------------------------------
 
@@ -231,7 +83,7 @@ class JobFiles final : public Monitor {
   // `sampler`: null for a run with the propeller and rudder (its samples are
   // in its checkpoints).
   // On ranks (`part`) rank 0 writes them; the cost is of all ranks.
-  JobFiles(Context& ctx, Job& job, const CaptiveSampler* sampler, RunCost cost,
+  JobFiles(Context& ctx, CampaignJob& job, const CaptiveSampler* sampler, RunCost cost,
            const DomainPart* part)
       : ctx_(ctx), job_(job), sampler_(sampler), cost_(cost), part_(part) {}
   void AfterStep(const PimpleSolver& solver, const StepRecord& record, History&) override {
@@ -274,7 +126,7 @@ class JobFiles final : public Monitor {
   }
   double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
   Context& ctx_;
-  Job& job_;
+  CampaignJob& job_;
   const CaptiveSampler* sampler_;
   RunCost cost_;
   const DomainPart* part_;
@@ -291,7 +143,7 @@ struct Resume {
   RunCost cost;
 };
 
-Resume ReadResume(const Job& job) {
+Resume ReadResume(const CampaignJob& job) {
   const fs::path checkpoint = job.dir / "checkpoint.h5", samples_file = job.dir / "samples.h5";
   Resume r;
   if (!fs::exists(checkpoint) || !fs::exists(samples_file)) return r;
@@ -311,12 +163,12 @@ Resume ReadResume(const Job& job) {
 
 // Runs (or resumes) one job through the run driver; false when the step
 // budget ran out first.
-bool ExecuteAppendageJob(Context& ctx, Job& job);
+bool ExecuteAppendageJob(Context& ctx, CampaignJob& job);
 
 // Creates the run's directory, locks it against a second process and removes
 // what a killed earlier attempt left half-written; on ranks rank 0 does this
 // and holds the lock (in `lock`).
-void ClaimRunDirectory(const Context& ctx, const Job& job, std::optional<RunLock>& lock) {
+void ClaimRunDirectory(const Context& ctx, const CampaignJob& job, std::optional<RunLock>& lock) {
   OnFirstRank(ctx.ranks, [&] {
     fs::create_directories(job.dir);
     lock.emplace(job.dir, job.name);
@@ -333,7 +185,7 @@ double CellCount(const Case& c) {
 // Runs a job's case through the driver with the campaign's checkpoints
 // (<dir>/checkpoint.h5) and step budget, restarting from `restart` if set;
 // sets job.step. Empty when the budget ran out first; a diverged run throws.
-std::optional<RunDriverSummary> DriveJob(const Context& ctx, Job& job, Case& c, std::span<Monitor* const> monitors,
+std::optional<RunDriverSummary> DriveJob(const Context& ctx, CampaignJob& job, Case& c, std::span<Monitor* const> monitors,
                                          const fs::path& restart) {
   RunDriverOptions o;
   o.restart = restart;
@@ -351,7 +203,7 @@ std::optional<RunDriverSummary> DriveJob(const Context& ctx, Job& job, Case& c, 
   return d;
 }
 
-bool ExecuteJob(Context& ctx, Job& job) {
+bool ExecuteJob(Context& ctx, CampaignJob& job) {
   if (ctx.budget > 0 && ctx.computed >= ctx.budget) return false;  // as if killed here
   if (job.appendage) return ExecuteAppendageJob(ctx, job);
   CaseOverrides overrides;
@@ -401,7 +253,7 @@ bool ExecuteJob(Context& ctx, Job& job) {
 // A run with the propeller and rudder: the free-running coupler holds the
 // body, the sampler keeps its samples in the checkpoints; the means over the
 // second half of the steady duration go into result.h5.
-bool ExecuteAppendageJob(Context& ctx, Job& job) {
+bool ExecuteAppendageJob(Context& ctx, CampaignJob& job) {
   CaseOverrides overrides;
   overrides.dt = job.dt;
   overrides.end_time = job.dt * job.steps;
@@ -430,13 +282,7 @@ bool ExecuteAppendageJob(Context& ctx, Job& job) {
 
 // --- several runs as worker processes ---------------------------------------
 
-void ReadProgressFile(Job& job) {
-  std::ifstream in(job.dir / "progress.txt");
-  int step = 0, steps = 0;
-  if (in >> step >> steps) job.step = step;
-}
-
-pid_t StartWorker(const data::CampaignFile& f, const WorkerProgram& program, Job& job) {
+pid_t StartWorker(const data::CampaignFile& f, const WorkerProgram& program, CampaignJob& job) {
   return SpawnWorker(program, {"--quiet", "captive", f.path.string(), "--run", job.name, "--no-progress"},
                      job.dir / "log.txt", job.name);
 }
@@ -469,86 +315,46 @@ CaseSettings CampaignCaseSettings(const data::CampaignFile& f, const data::Capti
   return settings;
 }
 
-// The state of every job from its directory: done when result.h5 exists,
-// otherwise at the step of its progress file.
-void ReadJobStates(std::vector<Job>& jobs) {
-  for (Job& j : jobs) {
-    if (fs::exists(j.dir / "result.h5")) {
-      j.state = Job::State::kDone;
-      j.step = j.steps;
-    } else {
-      ReadProgressFile(j);
-    }
-  }
-}
-
-// The progress table of a campaign: kept in the summary at every update and
-// printed (when the options ask for it) at most every 10 s unless forced.
-class ProgressTable {
- public:
-  ProgressTable(const data::CampaignFile& f, const CampaignRunOptions& options,
-                const std::vector<Job>& jobs, CampaignRunSummary& summary)
-      : file_(f), options_(options), jobs_(jobs), summary_(summary) {}
-  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-  void Print(bool force) {
-    summary_.table = Table(jobs_, elapsed(), summary_.steps_computed);
-    if (!options_.progress) return;
-    if (!force && Clock::now() - last_print_ < std::chrono::seconds(10)) return;
-    last_print_ = Clock::now();
-    std::fprintf(options_.stream, "captive campaign '%s' (cfd):\n%s", file_.name.c_str(),
-                 summary_.table.c_str());
-    std::fflush(options_.stream);
-  }
-
- private:
-  const data::CampaignFile& file_;
-  const CampaignRunOptions& options_;
-  const std::vector<Job>& jobs_;
-  CampaignRunSummary& summary_;
-  Clock::time_point start_ = Clock::now();
-  Clock::time_point last_print_ = Clock::now() - std::chrono::hours(1);
-};
-
 // Worker mode (--run): runs just the named job in this process and writes
 // its result; the campaign file is left to the parent.
-CampaignRunSummary RunOnly(Context& ctx, const std::string& name, std::vector<Job>& jobs,
+CampaignRunSummary RunOnly(Context& ctx, const std::string& name, std::vector<CampaignJob>& jobs,
                            CampaignRunSummary summary) {
-  auto it = std::find_if(jobs.begin(), jobs.end(), [&](const Job& j) { return j.name == name; });
+  auto it = std::find_if(jobs.begin(), jobs.end(), [&](const CampaignJob& j) { return j.name == name; });
   if (it == jobs.end()) {
     std::vector<std::string> names;
-    for (const Job& j : jobs) names.push_back(j.name);
+    for (const CampaignJob& j : jobs) names.push_back(j.name);
     throw ArgumentError(fmt::format("--run {}: no such run in {} (runs: {})", name,
                                     ctx.file.path.string(), fmt::join(names, ", ")));
   }
-  if (it->state != Job::State::kDone) {
-    it->state = Job::State::kRunning;
-    if (ExecuteJob(ctx, *it)) it->state = Job::State::kDone;
+  if (it->state != CampaignJob::State::kDone) {
+    it->state = CampaignJob::State::kRunning;
+    if (ExecuteJob(ctx, *it)) it->state = CampaignJob::State::kDone;
   }
   summary.steps_computed = ctx.computed;
-  summary.runs_done = it->state == Job::State::kDone ? 1 : 0;
+  summary.runs_done = it->state == CampaignJob::State::kDone ? 1 : 0;
   summary.complete = false;
   return summary;
 }
 
 // Runs the jobs left one after the other in this process; false when the
 // step budget ran out first (the campaign resumes later).
-bool RunSerial(Context& ctx, std::vector<Job>& jobs, CampaignRunSummary& summary,
+bool RunSerial(Context& ctx, std::vector<CampaignJob>& jobs, CampaignRunSummary& summary,
                ProgressTable& progress) {
   ctx.report = [&] {
     summary.steps_computed = ctx.computed;
     progress.Print(false);
   };
   progress.Print(true);
-  for (Job& j : jobs) {
-    if (j.state == Job::State::kDone) continue;
-    j.state = Job::State::kRunning;
+  for (CampaignJob& j : jobs) {
+    if (j.state == CampaignJob::State::kDone) continue;
+    j.state = CampaignJob::State::kRunning;
     bool finished = false;
     try {
       finished = ExecuteJob(ctx, j);
     } catch (const RunDivergedError& e) {
       // A run that diverges fails alone: the others run, and the campaign
       // names it at the end (ThrowIfRunsFailed). Bad input stops it all.
-      j.state = Job::State::kFailed;
+      j.state = CampaignJob::State::kFailed;
       j.message = e.what();
       const std::string prefix = "run '" + j.name + "' ";
       if (j.message.rfind(prefix, 0) == 0) j.message.erase(0, prefix.size());
@@ -558,18 +364,18 @@ bool RunSerial(Context& ctx, std::vector<Job>& jobs, CampaignRunSummary& summary
     }
     summary.steps_computed = ctx.computed;
     if (!finished) {
-      j.state = Job::State::kLeft;
+      j.state = CampaignJob::State::kLeft;
       progress.Print(true);
       return false;
     }
-    j.state = Job::State::kDone;
+    j.state = CampaignJob::State::kDone;
     progress.Print(true);
   }
   return true;
 }
 
 // The steps a job has computed since its progress file was last read.
-int AdvanceProgress(Job& job) {
+int AdvanceProgress(CampaignJob& job) {
   const int before = job.step;
   ReadProgressFile(job);
   return job.step - before;
@@ -577,13 +383,13 @@ int AdvanceProgress(Job& job) {
 
 // Starts worker processes for up to `slots` jobs left; returns how many.
 int StartWorkers(const data::CampaignFile& f, const WorkerProgram& program, int slots,
-                 std::vector<Job>& jobs) {
+                 std::vector<CampaignJob>& jobs) {
   int started = 0;
-  for (Job& j : jobs) {
+  for (CampaignJob& j : jobs) {
     if (started >= slots) break;
-    if (j.state != Job::State::kLeft) continue;
+    if (j.state != CampaignJob::State::kLeft) continue;
     j.pid = StartWorker(f, program, j);
-    j.state = Job::State::kRunning;
+    j.state = CampaignJob::State::kRunning;
     ++j.starts;
     ++started;
   }
@@ -593,21 +399,21 @@ int StartWorkers(const data::CampaignFile& f, const WorkerProgram& program, int 
 // Records the end of worker `pid` (exit status `status`): its job is done
 // when it exited with 0 and wrote result.h5, failed otherwise with the error
 // line of its log. Returns the number of workers that ended (0 or 1).
-int FinishWorker(pid_t pid, int status, std::vector<Job>& jobs, CampaignRunSummary& summary) {
+int FinishWorker(pid_t pid, int status, std::vector<CampaignJob>& jobs, CampaignRunSummary& summary) {
   int finished = 0;
-  for (Job& j : jobs) {
+  for (CampaignJob& j : jobs) {
     if (j.pid != pid) continue;
     j.pid = -1;
     ++finished;
     summary.steps_computed += AdvanceProgress(j);
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(j.dir / "result.h5")) {
-      j.state = Job::State::kDone;
+      j.state = CampaignJob::State::kDone;
       j.step = j.steps;
     } else if (j.starts < kWorkerStartAttempts && DiedStartingMpi(j.dir / "log.txt")) {
       spdlog::warn("run '{}': its worker died while MPI started up; starting it again", j.name);
-      j.state = Job::State::kLeft;
+      j.state = CampaignJob::State::kLeft;
     } else {
-      j.state = Job::State::kFailed;
+      j.state = CampaignJob::State::kFailed;
       j.message = ErrorLine(j.dir / "log.txt");
     }
   }
@@ -615,10 +421,10 @@ int FinishWorker(pid_t pid, int status, std::vector<Job>& jobs, CampaignRunSumma
 }
 
 // Throws InputError naming every failed run and the error line of its log.
-void ThrowIfRunsFailed(const data::CampaignFile& f, const std::vector<Job>& jobs) {
+void ThrowIfRunsFailed(const data::CampaignFile& f, const std::vector<CampaignJob>& jobs) {
   std::string failures;
-  for (const Job& j : jobs) {
-    if (j.state == Job::State::kFailed)
+  for (const CampaignJob& j : jobs) {
+    if (j.state == CampaignJob::State::kFailed)
       failures += fmt::format("\n  run '{}': {}", j.name, j.message);
   }
   if (!failures.empty())
@@ -628,7 +434,7 @@ void ThrowIfRunsFailed(const data::CampaignFile& f, const std::vector<Job>& jobs
 // Runs the jobs left as `kelvin captive --run` worker processes, at most
 // `n_jobs` at a time, polling their progress files for the table.
 void RunWorkers(const data::CampaignFile& f, const CampaignRunOptions& options, int n_jobs,
-                std::vector<Job>& jobs, CampaignRunSummary& summary, ProgressTable& progress) {
+                std::vector<CampaignJob>& jobs, CampaignRunSummary& summary, ProgressTable& progress) {
   if (options.executable.empty())
     throw ArgumentError("--jobs > 1 needs the path of the kelvin program");
   const WorkerProgram program{options.executable, options.launcher, options.ranks_per_run};
@@ -644,8 +450,8 @@ void RunWorkers(const data::CampaignFile& f, const CampaignRunOptions& options, 
       progress.Print(true);
       continue;
     }
-    for (Job& j : jobs) {
-      if (j.state == Job::State::kRunning) summary.steps_computed += AdvanceProgress(j);
+    for (CampaignJob& j : jobs) {
+      if (j.state == CampaignJob::State::kRunning) summary.steps_computed += AdvanceProgress(j);
     }
     progress.Print(false);
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
@@ -657,7 +463,7 @@ void RunWorkers(const data::CampaignFile& f, const CampaignRunOptions& options, 
 
 // The captive run of a finished job: the total hull loads, without the
 // rigid-body inertia (CFD gives the hydrodynamic force alone).
-data::CaptiveRun CaptiveRunOf(const Job& job, const std::vector<CaptiveSample>& samples) {
+data::CaptiveRun CaptiveRunOf(const CampaignJob& job, const std::vector<CaptiveSample>& samples) {
   data::CaptiveRun run;
   run.name = job.name;
   run.motion = job.motion;
@@ -696,7 +502,7 @@ data::AppendageGeometry AppendageGeometryOf(const data::AppendageDesign& d) {
 // Every run is done: the campaign file in the captive schema, with the
 // solver, the case and the prime draft as attributes and the extra channels.
 void WriteCampaignFile(const data::CampaignFile& f, const data::CaptiveShip& ship,
-                       const CaseSettings& settings, const std::vector<Job>& jobs,
+                       const CaseSettings& settings, const std::vector<CampaignJob>& jobs,
                        const fs::path& output) {
   data::CaptiveCampaign campaign;
   const bool free_surface = settings.free_surface;
@@ -706,9 +512,9 @@ void WriteCampaignFile(const data::CampaignFile& f, const data::CaptiveShip& shi
       free_surface ? "linearized free surface" : "double body (no free surface)");
   campaign.ship = ship;
   std::vector<std::vector<CaptiveSample>> all;
-  std::vector<const Job*> bare;
+  std::vector<const CampaignJob*> bare;
   data::AppendageCampaign appendages;
-  for (const Job& j : jobs) {
+  for (const CampaignJob& j : jobs) {
     if (j.appendage) {
       appendages.runs.push_back(data::ReadAppendageRuns(j.dir / "result.h5", /*geometry=*/false).runs.at(0));
       continue;
@@ -739,7 +545,7 @@ void WriteCampaignFile(const data::CampaignFile& f, const data::CaptiveShip& shi
 CampaignRunSummary RunCfdCampaign(const data::CampaignFile& f, const CampaignRunOptions& options) {
   const data::CaptiveShip ship = CampaignShip(f);
   const CaseSettings settings = CampaignCaseSettings(f, ship);
-  std::vector<Job> jobs = PlanJobs(f, ship, settings.time.dt);
+  std::vector<CampaignJob> jobs = PlanCampaignJobs(f, ship, settings.time.dt);
   const int n_jobs = options.jobs > 0 ? options.jobs : f.cfd.jobs;
   const bool workers = n_jobs > 1 || options.ranks_per_run > 1;
   if (workers && options.stop_after_steps > 0) {
@@ -766,7 +572,7 @@ CampaignRunSummary RunCfdCampaign(const data::CampaignFile& f, const CampaignRun
   WriteCampaignFile(f, ship, settings, jobs, summary.output);
   summary.runs_done = summary.runs_total;
   summary.complete = true;
-  summary.table = Table(jobs, progress.elapsed(), summary.steps_computed);
+  summary.table = ProgressTableText(jobs, progress.elapsed(), summary.steps_computed);
   return summary;
 }
 

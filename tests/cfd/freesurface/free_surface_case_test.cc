@@ -115,35 +115,39 @@ TEST(FreeSurfaceCase, RunWritesEtaOnThePatchAndRestartsBitForBit) {
   ExpectRestartBitForBit(tmp / "out" / "checkpoint.h5", [](double end) { return CaseText(end); });
 }
 
+std::string LocalFlowCaseText(double end) {
+  return Replace(CaseText(end), "      advection: quick\n", "      advection: quick\n      linearization: local_flow\n");
+}
+
+// What `case_text` run with `o` logs; the run must complete.
+std::string LoggedRun(const fs::path& dir, const std::string& case_text, const RunOptions& o) {
+  std::ostringstream log;
+  const auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(
+      std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+  const RunSummary s = RunCase(WriteCase(dir, case_text), o);
+  spdlog::set_default_logger(previous);
+  EXPECT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
+  return log.str();
+}
+
 // The local-flow linearization keeps its base flow (here, without a rigid
 // lid, the flow of the first step) in the checkpoint: its restart is bit for
 // bit as well. A run that starts without a lid says that its base flow is
 // not a double body.
 TEST(FreeSurfaceCase, LocalFlowRunRestartsBitForBit) {
-  auto text = [](double end) {
-    return Replace(CaseText(end), "      advection: quick\n", "      advection: quick\n      linearization: local_flow\n");
-  };
   kelvin::testing::ScopedTempDir tmp;
   RunOptions o;
   o.progress = false;
-  std::ostringstream log;
-  const auto previous = spdlog::default_logger();
-  spdlog::set_default_logger(
-      std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
-  const RunSummary s = RunCase(WriteCase(tmp.path(), text(1.0)), o);
-  spdlog::set_default_logger(previous);
-  ASSERT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
-  EXPECT_NE(log.str().find("local_flow without time.rigid_lid_windows"), std::string::npos) << log.str();
-  ExpectRestartBitForBit(tmp / "out" / "checkpoint.h5", text);
+  const std::string log = LoggedRun(tmp.path(), LocalFlowCaseText(1.0), o);
+  EXPECT_NE(log.find("local_flow without time.rigid_lid_windows"), std::string::npos) << log;
+  ExpectRestartBitForBit(tmp / "out" / "checkpoint.h5", LocalFlowCaseText);
 }
 
 // A local-flow run restarted from a uniform-stream checkpoint taken after
 // the release finds waves and no base flow to keep: it says so. The same
 // restart as a uniform-stream run is silent.
 TEST(FreeSurfaceCase, LocalFlowRestartFromAUniformStreamCheckpointWarns) {
-  auto local = [](double end) {
-    return Replace(CaseText(end), "      advection: quick\n", "      advection: quick\n      linearization: local_flow\n");
-  };
   kelvin::testing::ScopedTempDir tmp;
   RunOptions o;
   o.progress = false;
@@ -151,17 +155,10 @@ TEST(FreeSurfaceCase, LocalFlowRestartFromAUniformStreamCheckpointWarns) {
   RunOptions restart = o;
   restart.restart = tmp / "out" / "checkpoint.h5";
   auto restarted_log = [&](const std::string& text, const char* out) {
-    std::ostringstream log;
-    const auto previous = spdlog::default_logger();
-    spdlog::set_default_logger(
-        std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
     restart.output_override = tmp / out;
-    const RunSummary s = RunCase(WriteCase(tmp.path(), text), restart);
-    spdlog::set_default_logger(previous);
-    EXPECT_EQ(s.status, RunSummary::Status::kCompleted) << s.message;
-    return log.str();
+    return LoggedRun(tmp.path(), text, restart);
   };
-  const std::string warned = restarted_log(local(1.0), "local");
+  const std::string warned = restarted_log(LocalFlowCaseText(1.0), "local");
   EXPECT_NE(warned.find("restarted from a checkpoint of a released surface without a base flow"), std::string::npos)
       << warned;
   EXPECT_EQ(warned.find("without time.rigid_lid_windows"), std::string::npos) << warned;  // a restart: not that one
