@@ -1,8 +1,8 @@
 // The body-force propeller: the disk's loads integrate to the prescribed T
 // and Q on any placement; a uniformly loaded disk in a uniform stream has
 // the far wake of actuator-disk momentum theory; in open water the
-// Propeller recovers the input K_T(J) after removing its induced velocity;
-// every bad input is a clear error.
+// Propeller recovers the input K_T(J) after removing its induced velocity
+// (its bad input: propeller_errors_test.cc).
 #include "cfd/propulsion/actuator_disk.h"
 
 #include <gmock/gmock.h>
@@ -20,28 +20,25 @@
 #include "cfd/propulsion/propeller.h"
 #include "data/schema/errors.h"
 #include "tests/cfd/cfd_test_support.h"
+#include "tests/cfd/propulsion/propeller_test_support.h"
 #include "tests/cfd/propulsion/stream_support.h"
 
 namespace kelvin::cfd {
 namespace {
 
 using ::testing::HasSubstr;
+using testing::HoughOrdwayDisk;
+using testing::Kp505;
+using testing::StillWater;
 using testing::StretchedCoordinates;
 using testing::TensorMesh;
+using testing::UniformBox;
+using testing::UniformFlow;
 constexpr double kPi = std::numbers::pi;
 
 // ---------------------------------------------------------------------------
 // Meshes
 
-// A uniform box [-1, 1]^3 with n cells per axis, walls on no side.
-Mesh UniformBox(int n) {
-  BoxMeshOptions mo;
-  mo.min = Vector3(-1, -1, -1);
-  mo.max = Vector3(1, 1, 1);
-  mo.cells = {n, n, n};
-  mo.kinds.fill(PatchKind::kPatch);
-  return MakeBoxMesh(mo);
-}
 
 // ---------------------------------------------------------------------------
 // Loads integrate to T and Q
@@ -88,16 +85,6 @@ Sums IntegrateSource(const PimpleSolver& solver, const Mesh& mesh, const Vector3
   return s;
 }
 
-std::unique_ptr<PimpleSolver> StillWater(const Mesh& mesh) {
-  auto U = testing::MakeField<Vector3>("U", mesh, [](const Patch&) -> std::unique_ptr<BoundaryCondition<Vector3>> {
-    return std::make_unique<Slip>();
-  });
-  auto p = testing::MakeField<double>("p", mesh, [](const Patch&) -> std::unique_ptr<BoundaryCondition<double>> {
-    return std::make_unique<ZeroGradient<double>>();
-  });
-  return std::make_unique<PimpleSolver>(mesh, PhysicsOptions{}, SchemeOptions{}, PimpleOptions{}, std::move(U),
-                                        std::move(p));
-}
 
 ActuatorDiskOptions TiltedDisk(ActuatorDiskOptions::Distribution d, int sense) {
   ActuatorDiskOptions o;
@@ -403,37 +390,7 @@ TEST(ActuatorDiskStream, TorqueLeavesAsTheAngularMomentumFluxOfTheSwirl) {
 // ---------------------------------------------------------------------------
 // Open water in CFD
 
-// KP505 (the KCS propeller) open-water table: NMRI data for SIMMAN 2008,
-// data/reference/kp505_open_water.csv (J, K_T, 10 K_Q).
-sim::OpenWaterCurve Kp505() {
-  std::ifstream in(kelvin::testing::SourceDir() / "data/reference/kp505_open_water.csv");
-  EXPECT_TRUE(in.good()) << "kp505_open_water.csv";
-  sim::OpenWaterCurve c;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 'J') continue;
-    std::stringstream ss(line);
-    std::string a, b, q;
-    std::getline(ss, a, ',');
-    std::getline(ss, b, ',');
-    std::getline(ss, q, ',');
-    c.J.push_back(std::stod(a));
-    c.K_T.push_back(std::stod(b));
-    c.K_Q.push_back(std::stod(q) / 10.0);
-  }
-  c.origin = "kp505_open_water.csv";
-  return c;
-}
 
-ActuatorDiskOptions HoughOrdwayDisk() {
-  ActuatorDiskOptions o;
-  o.diameter = 1.0;
-  o.hub_ratio = 0.2;
-  o.thickness = 0.2;
-  o.axis = -Vector3::UnitX();
-  o.distribution = ActuatorDiskOptions::Distribution::kHoughOrdway;
-  return o;
-}
 
 struct OpenWaterPoint {
   double J_true, J, K_T, K_T_true, error, U_disk, J_disk_momentum, cpu_s;
@@ -537,12 +494,6 @@ TEST(PropellerInflow, AnnularCorrectionForHoughOrdway) {
   EXPECT_LT(a.EffectiveInflow(1.2, 0.3, 1.0), c.EffectiveInflow(1.2, 0.3, 1.0));
 }
 
-// U = (u, 0, 0) everywhere: no time step needed for Update.
-std::unique_ptr<PimpleSolver> UniformFlow(const Mesh& mesh, double u) {
-  auto solver = StillWater(mesh);
-  for (Vector3& v : solver->U().values()) v = Vector3(u, 0, 0);
-  return solver;
-}
 
 TEST(PropellerState, RestoredStateRepeatsUpdatesBitForBit) {
   const Mesh mesh = UniformBox(20);
@@ -581,216 +532,6 @@ TEST(PropellerState, FixedLoadAppliesThePrescribedLoad) {
   EXPECT_NEAR(s.U_disk, 0.8, 1e-12);
   EXPECT_LT(s.U_A, s.U_disk);
   EXPECT_EQ(prop.GetState().thrust, 5.0);
-}
-
-// ---------------------------------------------------------------------------
-// Bad input: one clear error each
-
-void ExpectDiskError(const Mesh& mesh, const ActuatorDiskOptions& o, const std::vector<std::string>& parts) {
-  try {
-    const ActuatorDisk disk(mesh, o);
-    ADD_FAILURE() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    for (const std::string& p : parts) EXPECT_THAT(e.what(), HasSubstr(p));
-  }
-}
-
-TEST(ActuatorDiskErrors, BadOptions) {
-  const Mesh mesh = UniformBox(10);
-  auto with = [](const std::function<void(ActuatorDiskOptions&)>& f) {
-    ActuatorDiskOptions o;
-    o.diameter = 0.8;
-    f(o);
-    return o;
-  };
-  ExpectDiskError(mesh, with([](auto& o) { o.diameter = -1.0; }), {"propeller.diameter = -1", "positive"});
-  ExpectDiskError(mesh, with([](auto& o) { o.hub_ratio = 0.5; }), {"propeller.hub_ratio = 0.5", "[0, 0.5)"});
-  ExpectDiskError(mesh, with([](auto& o) { o.hub_ratio = -0.1; }), {"propeller.hub_ratio = -0.1"});
-  ExpectDiskError(mesh, with([](auto& o) { o.thickness = 0.0; }), {"propeller.thickness = 0", "positive"});
-  ExpectDiskError(mesh, with([](auto& o) { o.axis = Vector3(1, 1, 0); }), {"propeller.axis = (1, 1, 0)", "unit"});
-  ExpectDiskError(mesh, with([](auto& o) { o.sense = 0; }), {"propeller.sense = 0", "+1 or -1"});
-  ExpectDiskError(mesh, with([](auto& o) { o.centre.y() = NAN; }), {"propeller.centre", "finite"});
-  ExpectDiskError(mesh, with([](auto& o) { o.name = "case.yaml: propulsion.propeller"; o.diameter = 0; }),
-                  {"case.yaml: propulsion.propeller.diameter = 0"});
-}
-
-TEST(ActuatorDiskErrors, OutsideTheMesh) {
-  ActuatorDiskOptions o;
-  o.centre = Vector3(10.0, 0.0, 0.0);
-  ExpectDiskError(UniformBox(10), o, {"propeller.centre = (10, 0, 0)", "contains no cell", "box mesh"});
-}
-
-// A hull (a block obstacle, wall patch `obstacle`) behind the disk.
-Mesh BoxWithHull() {
-  BoxMeshOptions mo;
-  mo.min = Vector3(-1, -1, -1);
-  mo.max = Vector3(1, 1, 1);
-  mo.cells = {20, 20, 20};
-  mo.kinds.fill(PatchKind::kPatch);
-  mo.obstacle_min = {12, 8, 8};  // x in [0.2, 0.6], y, z in [-0.2, 0.2]
-  mo.obstacle_max = {16, 12, 12};
-  return MakeBoxMesh(mo);
-}
-
-TEST(ActuatorDiskErrors, OverlapsTheHull) {
-  const Mesh mesh = BoxWithHull();
-  ActuatorDiskOptions o;
-  o.diameter = 0.6;
-  o.thickness = 0.1;
-  o.hub_ratio = 0.2;
-  o.centre = Vector3(0.0, 0.0, 0.0);  // 0.15 clear of the hull: fine
-  EXPECT_NO_THROW(ActuatorDisk(mesh, o));
-  o.centre = Vector3(0.12, 0.0, 0.0);  // 0.03 clear: less than half a cell
-  ExpectDiskError(mesh, o, {"propeller.centre = (0.12, 0, 0)", "touches wall patch 'obstacle'"});
-  o.centre = Vector3(0.4, 0.0, 0.0);  // inside the hull, the blades through it
-  ExpectDiskError(mesh, o, {"touches wall patch 'obstacle'"});
-}
-
-// A shaft boss (wall patch `obstacle`, x in [0, 0.6]) ending inside the
-// disk's thickness: within the hub radius it is where the propeller sits,
-// wider than the hub it cuts the loaded annulus.
-TEST(ActuatorDiskErrors, BossInsideTheHubIsAllowed) {
-  BoxMeshOptions mo;
-  mo.min = Vector3(-1, -1, -1);
-  mo.max = Vector3(1, 1, 1);
-  mo.cells = {20, 20, 20};
-  mo.kinds.fill(PatchKind::kPatch);
-  mo.obstacle_min = {10, 9, 9};  // y, z in [-0.1, 0.1]: face centres at r <= 0.112
-  mo.obstacle_max = {16, 11, 11};
-  ActuatorDiskOptions o;
-  o.diameter = 1.2;
-  o.thickness = 0.1;
-  o.hub_ratio = 0.3;  // r_hub = 0.18
-  o.centre = Vector3(-0.02, 0.0, 0.0);  // x in [-0.07, 0.03]: the boss end is inside
-  EXPECT_NO_THROW(ActuatorDisk(MakeBoxMesh(mo), o));
-  mo.obstacle_min = {10, 8, 8};  // y, z in [-0.2, 0.2]: face centres out to r 0.21
-  mo.obstacle_max = {16, 12, 12};
-  ExpectDiskError(MakeBoxMesh(mo), o, {"touches wall patch 'obstacle'", "outside the hub radius"});
-}
-
-TEST(ActuatorDiskErrors, CellNextToAWall) {
-  BoxMeshOptions mo;
-  mo.min = Vector3(-1, -1, -1);
-  mo.max = Vector3(1, 1, 1);
-  mo.cells = {10, 10, 10};  // walls on every side
-  ActuatorDiskOptions o;
-  o.diameter = 1.95;
-  ExpectDiskError(MakeBoxMesh(mo), o, {"touches wall patch 'y"});
-}
-
-// Coarse: a warning, not an error.
-TEST(ActuatorDiskErrors, FewCellsAcrossIsAWarning) {
-  ActuatorDiskOptions o;
-  o.diameter = 1.0;
-  const ActuatorDisk disk(UniformBox(8), o);
-  EXPECT_NEAR(disk.cells_across_diameter(), 4.0, 1e-9);
-}
-
-TEST(PropellerErrors, JOutsideTheTable) {
-  const Mesh mesh = UniformBox(20);
-  Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), Kp505());
-  auto solver = UniformFlow(mesh, 2.0);
-  std::vector<Vector3> source;
-  try {
-    prop.Update(*solver, nullptr, Eigen::Matrix3d::Identity(), 1.0, 1.0, source);
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("propeller.open_water: J = 2"));
-    EXPECT_THAT(e.what(), HasSubstr("outside the table's range [0, 1.05]"));
-  }
-}
-
-TEST(PropellerErrors, ReversedFlowAndBadRate) {
-  const Mesh mesh = UniformBox(20);
-  Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), Kp505());
-  auto solver = UniformFlow(mesh, -0.5);
-  std::vector<Vector3> source;
-  try {
-    prop.Update(*solver, nullptr, Eigen::Matrix3d::Identity(), 1.0, 1.0, source);
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("reversed (U_disk = -0.5"));
-  }
-  try {
-    prop.Update(*solver, nullptr, Eigen::Matrix3d::Identity(), 0.0, 1.0, source);
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("propeller.n = 0"));
-  }
-}
-
-// In the start-up ramp a J outside the table is held at its end: J_min
-// (bollard pull, K_T(0)) for reversed flow and for a correction that removes
-// more than the flow through the disk carries, J_max for a light disk. After
-// the ramp the same states are errors (PropellerErrors above).
-TEST(PropellerStartUp, JOutsideTheTableIsHeldAtItsEnd) {
-  const Mesh mesh = UniformBox(20);
-  const sim::OpenWaterCurve curve = Kp505();
-  const double D = HoughOrdwayDisk().diameter, n = 1.0, rho = 1.0;
-  std::vector<Vector3> source;
-  {
-    Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
-    const PropellerState s =
-        prop.Update(*UniformFlow(mesh, -0.5), nullptr, Eigen::Matrix3d::Identity(), n, rho, source, true);
-    EXPECT_TRUE(s.clamped);
-    EXPECT_EQ(s.U_A, 0.0);
-    EXPECT_EQ(s.J, curve.J_min());
-    EXPECT_DOUBLE_EQ(s.T, rho * n * n * std::pow(D, 4) * curve.KT(curve.J_min()));
-  }
-  {
-    // A heavy load from the last step over a slow stream: U_A < 0 from the
-    // momentum correction.
-    Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
-    prop.SetState({10.0, 0.0, n});
-    const PropellerState s =
-        prop.Update(*UniformFlow(mesh, 0.05), nullptr, Eigen::Matrix3d::Identity(), n, rho, source, true);
-    EXPECT_LT(s.U_A, 0.0);
-    EXPECT_TRUE(s.clamped);
-    EXPECT_EQ(s.J, curve.J_min());
-  }
-  {
-    Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
-    const PropellerState s =
-        prop.Update(*UniformFlow(mesh, 2.0), nullptr, Eigen::Matrix3d::Identity(), n, rho, source, true);
-    EXPECT_TRUE(s.clamped);
-    EXPECT_EQ(s.J, curve.J_max());
-  }
-  {
-    Propeller prop(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
-    const PropellerState s =
-        prop.Update(*UniformFlow(mesh, 0.8), nullptr, Eigen::Matrix3d::Identity(), 1.2, rho, source, true);
-    EXPECT_FALSE(s.clamped);  // inside the table: the same as after the ramp
-    Propeller after(ActuatorDisk(mesh, HoughOrdwayDisk()), curve);
-    EXPECT_EQ(s.J, after.Update(*UniformFlow(mesh, 0.8), nullptr, Eigen::Matrix3d::Identity(), 1.2, rho, source).J);
-  }
-}
-
-TEST(PropellerErrors, BadOptionsAndTable) {
-  const Mesh mesh = UniformBox(10);
-  PropellerOptions po;
-  po.thrust_relaxation = 0.0;
-  try {
-    Propeller(ActuatorDisk(mesh, HoughOrdwayDisk()), Kp505(), po);
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("propeller.thrust_relaxation = 0"));
-  }
-  po = PropellerOptions{};
-  po.mesh_share = 0.5;  // a full disk declared as a half
-  try {
-    Propeller(ActuatorDisk(mesh, HoughOrdwayDisk()), Kp505(), po);
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("propeller.mesh_share = 0.5"));
-  }
-  sim::OpenWaterCurve bad = Kp505();
-  bad.K_T[3] = 0.9;
-  try {
-    Propeller(ActuatorDisk(mesh, HoughOrdwayDisk()), bad);
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("propeller.open_water.K_T: [3] = 0.9"));
-  }
 }
 
 }  // namespace
