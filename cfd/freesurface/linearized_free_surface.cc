@@ -201,8 +201,6 @@ void LinearizedFreeSurface::PreparePressureSolve(const BcContext& ctx,
   // The local flow's base flow follows the flow under the lid and stays as
   // it was when the surface is released.
   if (LocalFlow(options_) && (rigid_lid_ || base_velocity_.empty())) SetBaseFlow(ctx);
-  // Once frozen (released, or read from a checkpoint), the base flow is checked once.
-  if (LocalFlow(options_) && !rigid_lid_ && !base_velocity_.empty() && amplifying_faces_ < 0) ReportAmplifyingFaces();
   if (rigid_lid_) {
     // Zero flux: the normal pressure gradient balances the predicted flux,
     // F_f = F_HbyA,f - rAU_f |S_f| dp/dn = 0.
@@ -515,30 +513,19 @@ std::vector<double> LinearizedFreeSurface::BaseFlowGains() const {
   return gain;
 }
 
-void LinearizedFreeSurface::ReportAmplifyingFaces() {
-  const std::vector<double> gain = BaseFlowGains();
-  amplifying_faces_ = 0;
-  int worst = -1, at_wall = 0;
-  std::vector<char> wall_face(gain.size(), 0);
+std::vector<int> LinearizedFreeSurface::UnresolvedSteps(double jump) const {
+  std::vector<char> flagged(eta_.size(), 0);
   for (const auto& edge : surface_.edges()) {
-    if (edge.neighbour < 0 && edge.rim_patch >= 0 && mesh_.patches()[edge.rim_patch].kind == PatchKind::kWall) {
-      wall_face[edge.face] = 1;
-    }
+    if (edge.neighbour < 0) continue;
+    const int a = edge.face, b = edge.neighbour;
+    if (std::abs(eta_[a] - eta_[b]) <= jump) continue;
+    flagged[std::abs(eta_[a]) >= std::abs(eta_[b]) ? a : b] = 1;
   }
-  for (std::size_t i = 0; i < gain.size(); ++i) {
-    if (gain[i] <= kAmplifyingGain) continue;
-    ++amplifying_faces_;
-    at_wall += wall_face[i];
-    if (worst < 0 || gain[i] > gain[worst]) worst = static_cast<int>(i);
+  std::vector<int> faces;
+  for (std::size_t i = 0; i < flagged.size(); ++i) {
+    if (flagged[i]) faces.push_back(static_cast<int>(i));
   }
-  if (amplifying_faces_ == 0 || (part_ && part_->rank != 0)) return;
-  const Vector3& x = surface_.centres()[worst];
-  spdlog::warn("free surface '{}': the local flow's base flow converges into {} surface faces ({} of them beside a "
-               "wall) more than {:g} times as fast as it carries eta out, up to {:.3g} times at ({:.4g}, {:.4g}) m: the "
-               "linearization about that flow amplifies eta there, and the elevation in those faces is not a wave "
-               "(a one-face trough or crest along the hull, and the wave resistance with it); field base_flow_gain "
-               "shows them; compare with linearization uniform_stream (docs/formulation.md section 3.1)",
-               surface_.name(), amplifying_faces_, at_wall, kAmplifyingGain, gain[worst], x.x(), x.y());
+  return faces;
 }
 
 std::vector<double> LinearizedFreeSurface::State() const {
@@ -572,7 +559,6 @@ void LinearizedFreeSurface::SetState(std::span<const double> s) {
     base_edge_flux_.clear();
     started_ = false;
     armed_ = false;
-    amplifying_faces_ = -1;
     return;
   }
   // Header of 4 values (with the rigid-lid flag) or 3 (older checkpoints);
@@ -605,7 +591,6 @@ void LinearizedFreeSurface::SetState(std::span<const double> s) {
     for (std::size_t i = 0; i < n; ++i) base_velocity_.emplace_back(s[e0 + edges + 2 * i], s[e0 + edges + 2 * i + 1], 0.0);
   }
   armed_ = false;
-  amplifying_faces_ = -1;
   // A released surface with waves and no base flow (the checkpoint of a
   // uniform-stream run): the next pressure solve's flow, waves and all,
   // becomes the base flow.

@@ -175,17 +175,13 @@ class LinearizedFreeSurface : public Mixed<double> {
   std::string type() const override { return "linearizedFreeSurface"; }
   PatchRole role() const override { return PatchRole::kFreeSurface; }
   std::vector<std::pair<std::string, std::vector<double>>> FaceFields() const override;
-  // Local flow: the faces into which the frozen base flow converges more
-  // than kAmplifyingGain times as fast as it carries eta out (inflow over
-  // outflow across their edges). The steady upwind balance multiplies the
-  // inflowing elevation by that ratio in each such face, and along a strip
-  // of them beside a hull (a boundary layer's flow toward the wall) it
-  // compounds into a trough or crest one face wide (measured on the DTC,
-  // BENCHMARKS.md `lfs_linearization`: 38 faces, the trough's face at 3.0;
-  // the Wigley has none above 1.5). Counted, with a warning, once the base
-  // flow is frozen; -1 before.
-  static constexpr double kAmplifyingGain = 2.0;
-  int amplifying_faces() const { return amplifying_faces_; }
+  // Faces whose elevation steps by more than `jump` (m) from an edge
+  // neighbour's, on the larger side of the step. A wave resolved by the
+  // surface mesh changes between faces by at most its amplitude (about U^2 /
+  // 2g at most, the stagnation rise) times k dx, about 1/2 or less with 12 or
+  // more faces per transverse wavelength: the resistance report checks the
+  // steps against U^2 / 4g (docs/formulation.md section 3.1).
+  std::vector<int> UnresolvedSteps(double jump) const;
   // Face fields, state, eta(), damping() and surface() cover the whole patch
   // (the undecomposed mesh's patch faces, in its order) on every rank, so
   // they do not depend on the partition.
@@ -228,7 +224,6 @@ class LinearizedFreeSurface : public Mixed<double> {
   // Inflow over outflow of each face under the base flow, the inflow across
   // the rim (undisturbed water or the waterline) not counted (0 without it).
   std::vector<double> BaseFlowGains() const;
-  void ReportAmplifyingFaces();
   // The advecting velocity c at surface face i.
   Vector3 StreamAtFace(int i, double t) const;
   // The known part eta*_f and the implicit diagonal of every surface face
@@ -251,7 +246,6 @@ class LinearizedFreeSurface : public Mixed<double> {
   // surface face and the flux of each edge, c . n_e |e| out of edge.face (m^2/s).
   std::vector<Vector3> base_velocity_;
   std::vector<double> base_edge_flux_;
-  int amplifying_faces_ = -1;
   std::vector<double> eta_;
   std::vector<std::vector<double>> eta_old_;  // eta^n, eta^{n-1}
   double time_ = 0.0;

@@ -228,22 +228,32 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Hu
     Scalar(w, "C_WL", rwl / q, "1", "R_WL / (0.5 rho S U^2)");
     summary += fmt::format("; waterline correction (separate) R_WL = {:.4g} N, C_WL = {:.3e}", rwl, rwl / q);
     WriteWaves(w, *free_surface_, hull_, options_);
-    if (const int n = free_surface_->amplifying_faces(); n >= 0) {
-      Scalar(w, "amplifying_faces", n, "1",
-             "local flow: surface faces whose base flow converges more than 2 times as fast as it carries eta out");
-      if (n > 0) {
-        const std::string warning = fmt::format(
-            "WARNING: the local flow's base flow amplifies eta in {} surface faces (field base_flow_gain above {:g}): "
-            "the elevation there and R_P, R_T with it are not those of waves; compare with linearization "
-            "uniform_stream",
-            n, LinearizedFreeSurface::kAmplifyingGain);
-        spdlog::warn("{}", warning);
-        summary += "\n  " + warning;
-      }
-    }
+    summary += UnresolvedStepsWarning(w);
   }
   w.Commit();
   return summary + FrictionWarning();
+}
+
+std::string ResistanceMonitor::UnresolvedStepsWarning(data::H5Writer& w) const {
+  const double jump = reference_.speed * reference_.speed / (4.0 * g_);
+  const std::vector<int> faces = free_surface_->UnresolvedSteps(jump);
+  Scalar(w, "unresolved_steps", static_cast<double>(faces.size()), "1",
+         "surface faces whose eta steps from a neighbour's by more than U^2 / 4g");
+  if (faces.empty()) return "";
+  int worst = faces[0];
+  const std::vector<double>& eta = free_surface_->eta();
+  for (int i : faces) {
+    if (std::abs(eta[i]) > std::abs(eta[worst])) worst = i;
+  }
+  const Vector3& x = free_surface_->surface().centres()[worst];
+  const std::string warning = fmt::format(
+      "WARNING: the elevation of {} free-surface face(s) steps from a neighbour's by more than U^2/4g = {:.3g} m "
+      "(eta {:.3g} m at ({:.4g}, {:.4g}) m): that is not a wave the surface mesh resolves, and R_P, R_T carry its "
+      "pressure; with linearization local_flow compare the surface field base_flow_gain there "
+      "(docs/formulation.md section 3.1)",
+      faces.size(), jump, eta[worst], x.x(), x.y());
+  spdlog::warn("{}", warning);
+  return "\n  " + warning;
 }
 
 std::string ResistanceMonitor::FrictionWarning() const {

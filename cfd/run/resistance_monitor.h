@@ -57,6 +57,9 @@ class ResistanceMonitor final : public Monitor {
   double FrictionRatio() const;
   std::string FrictionWarning() const;
   static constexpr double kFrictionLow = 0.9, kFrictionHigh = 1.2;
+  // The free surface's unresolved steps (LinearizedFreeSurface::UnresolvedSteps
+  // at U^2 / 4g): their count in `w`, and a warning line when there are any.
+  std::string UnresolvedStepsWarning(data::H5Writer& w) const;
   std::string WriteWaveMaking(data::H5Writer& writer) const;
   // 0.5 rho S U^2 (N): the scale of the coefficients.
   double DynamicForce() const { return 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed; }

@@ -503,31 +503,62 @@ TEST(LinearizedFreeSurface, LocalFlowKeepsTheBaseFlowOfTheRigidLid) {
 
 // A stream slowing almost to rest at the outflow edge, u = 1 - 0.2475 x on
 // 0 <= x <= 4: the base flow of the last column of faces (x = 3.9 to 4)
-// comes in at u(3.9) = 0.03475 and leaves at u(4) = 0.01, 3.5 times faster
-// in than out, and the column before it 1.7 times: the last column's two
-// faces are counted, once the base flow is frozen (-1 before). The slowing
-// stream of the other tests (at most 1.05 times) has none.
-TEST(LinearizedFreeSurface, LocalFlowCountsTheFacesItsBaseFlowAmplifies) {
+// comes in at u(3.9) = 0.03475 and leaves at u(4) = 0.01, a gain (inflow over
+// outflow) of 3.475; each face's gain is the surface field base_flow_gain,
+// written once the base flow is set.
+TEST(LinearizedFreeSurface, LocalFlowWritesTheBaseFlowAndItsGains) {
   SteadyStream s;
   LinearizedFreeSurfaceOptions o;
   o.linearization = LinearizedFreeSurfaceOptions::Linearization::kLocalFlow;
   const int top = s.mesh.FindPatch("zmax");
-  EXPECT_EQ(LinearizedFreeSurface(s.mesh, top, o).amplifying_faces(), -1);
+  const auto fields_before = LinearizedFreeSurface(s.mesh, top, o).FaceFields();
+  EXPECT_EQ(fields_before.size(), 2u);  // eta and beach_damping: no base flow yet
   s.Eta(o, s.Flow(-0.2475));
-  EXPECT_EQ(s.bc->amplifying_faces(), 2);
   const auto fields = s.bc->FaceFields();
-  const auto gain = std::find_if(fields.begin(), fields.end(), [](const auto& f) { return f.first == "base_flow_gain"; });
-  ASSERT_NE(gain, fields.end());
+  auto field = [&](const std::string& name) {
+    const auto it = std::find_if(fields.begin(), fields.end(), [&](const auto& f) { return f.first == name; });
+    EXPECT_NE(it, fields.end()) << name;
+    return it == fields.end() ? std::vector<double>{} : it->second;
+  };
+  const std::vector<double> gain = field("base_flow_gain"), u = field("base_flow_x"), div = field("base_flow_divergence");
+  ASSERT_EQ(gain.size(), static_cast<std::size_t>(s.bc->surface().size()));
   for (int i = 0; i < s.bc->surface().size(); ++i) {
     const double x = s.bc->surface().centres()[i].x();
     // The first column's inflow crosses the rim with undisturbed water (eta = 0): nothing to amplify.
     const double expected = x < 0.1 ? 0.0 : (1.0 - 0.2475 * (x - 0.05)) / (1.0 - 0.2475 * (x + 0.05));
-    EXPECT_NEAR(gain->second[i], expected, 1e-9) << "x " << x;
+    EXPECT_NEAR(gain[i], expected, 1e-9) << "x " << x;
+    EXPECT_NEAR(u[i], 1.0 - 0.2475 * x, 1e-12) << "x " << x;
+    EXPECT_NEAR(div[i], -0.2475, 1e-9) << "x " << x;
   }
-  s.Eta(o, s.Flow(-SteadyStream::kA * 0.1));
-  EXPECT_EQ(s.bc->amplifying_faces(), 0);
-  s.Eta(o, s.Flow(SteadyStream::kA));
-  EXPECT_EQ(s.bc->amplifying_faces(), 0);
+}
+
+// Unresolved steps: a smooth wave of height 0.1 m over faces 0.1 m apart
+// (neighbours differ by at most 0.032 m) has none at a jump of 0.05 m; a face
+// raised by 0.2 m and one lowered by 0.2 m are found (not their neighbours,
+// on the smaller side of each step); a ramp rising 0.02 m per face has none,
+// one rising 0.2 m per face steps everywhere but at its lowest column.
+TEST(LinearizedFreeSurface, FindsUnresolvedSteps) {
+  SteadyStream s;
+  const int top = s.mesh.FindPatch("zmax");
+  LinearizedFreeSurface bc(s.mesh, top, {});
+  const int n = bc.surface().size();
+  auto x = [&](int i) { return bc.surface().centres()[i].x(); };
+  std::vector<double> eta(n);
+  for (int i = 0; i < n; ++i) eta[i] = 0.1 * std::sin(std::numbers::pi * x(i));
+  bc.SetEta(eta);
+  EXPECT_TRUE(bc.UnresolvedSteps(0.05).empty());
+  eta[17] += 0.2;
+  eta[40] -= 0.2;
+  bc.SetEta(eta);
+  EXPECT_EQ(bc.UnresolvedSteps(0.05), (std::vector<int>{17, 40}));
+  for (int i = 0; i < n; ++i) eta[i] = 0.2 * x(i);
+  bc.SetEta(eta);
+  EXPECT_TRUE(bc.UnresolvedSteps(0.05).empty());
+  for (int i = 0; i < n; ++i) eta[i] = 2.0 * x(i);
+  bc.SetEta(eta);
+  const std::vector<int> steep = bc.UnresolvedSteps(0.05);
+  EXPECT_EQ(steep.size(), static_cast<std::size_t>(n - 2));  // 40 x 2 faces
+  for (int i : steep) EXPECT_GT(x(i), 0.1);
 }
 
 // In a uniform stream the two linearizations are the same condition: the

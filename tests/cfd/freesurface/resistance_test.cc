@@ -200,6 +200,11 @@ TEST(ResistanceCase, WritesCoefficientsConsistentWithItsForcesAndStops) {
   EXPECT_EQ(h.Read("wave_cuts/cut0/eta").rows, 24u);
   EXPECT_EQ(h.Read("wave_profile/eta").rows, 10u);
   EXPECT_TRUE(h.Has("R_WL"));
+  // The block's pattern is resolved: no face steps from a neighbour by more
+  // than U^2 / 4g = 0.0255 m (a zero threshold would count every face with a
+  // neighbour at another level).
+  EXPECT_EQ(h.Read("unresolved_steps").at(0), 0.0);
+  EXPECT_GT(h.Read("eta_max").at(0) - h.Read("eta_min").at(0), 1e-3);
   // The whole pattern: one row per free-surface face, areas summing to the
   // patch (6 x 4 m less the block's 1.5 x 1 m waterplane).
   const data::Series surface_area = h.Read("surface/area"), eta = h.Read("surface/eta");
