@@ -235,6 +235,7 @@ std::string ResistanceMonitor::Write(const std::filesystem::path& file, const Hu
 }
 
 std::string ResistanceMonitor::UnresolvedStepsWarning(data::H5Writer& w) const {
+  if (!(reference_.speed > 0.0)) return "";
   const double jump = reference_.speed * reference_.speed / (4.0 * g_);
   const std::vector<int> faces = free_surface_->UnresolvedSteps(jump);
   Scalar(w, "unresolved_steps", static_cast<double>(faces.size()), "1",
