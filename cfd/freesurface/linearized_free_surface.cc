@@ -468,33 +468,20 @@ void LinearizedFreeSurface::CorrectAfterFlux(const BcContext&, std::span<const d
 
 std::vector<std::pair<std::string, std::vector<double>>> LinearizedFreeSurface::FaceFields() const {
   std::vector<std::pair<std::string, std::vector<double>>> fields = {{"eta", eta_}, {"beach_damping", mu_}};
-  if (base_velocity_.empty()) return fields;
-  // The local flow's base flow, its horizontal divergence (the rate at which
-  // the conservative form feeds eta where it converges) and each face's
-  // inflow over outflow.
+  if (!base_velocity_.empty()) AppendBaseFlowFields(fields);
+  return fields;
+}
+
+void LinearizedFreeSurface::AppendBaseFlowFields(std::vector<std::pair<std::string, std::vector<double>>>& fields) const {
   const int n = surface_.size();
-  std::vector<double> u(n), v(n), divergence(n, 0.0);
+  std::vector<double> u(n), v(n);
   for (int i = 0; i < n; ++i) {
     u[i] = base_velocity_[i].x();
     v[i] = base_velocity_[i].y();
   }
-  const auto& edges = surface_.edges();
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    divergence[edges[e].face] += base_edge_flux_[e];
-    if (edges[e].neighbour >= 0) divergence[edges[e].neighbour] -= base_edge_flux_[e];
-  }
-  for (int i = 0; i < n; ++i) divergence[i] /= surface_.areas()[i];
-  fields.emplace_back("base_flow_x", std::move(u));
-  fields.emplace_back("base_flow_y", std::move(v));
-  fields.emplace_back("base_flow_divergence", std::move(divergence));
-  fields.emplace_back("base_flow_gain", BaseFlowGains());
-  return fields;
-}
-
-std::vector<double> LinearizedFreeSurface::BaseFlowGains() const {
-  const int n = surface_.size();
-  std::vector<double> in(n, 0.0), out(n, 0.0), gain(n, 0.0);
-  if (base_edge_flux_.empty()) return gain;
+  // Per face, the base flow's outflow, its inflow from other faces, and its
+  // inflow across the rim (m^2/s).
+  std::vector<double> out(n, 0.0), in(n, 0.0), rim_in(n, 0.0);
   const auto& edges = surface_.edges();
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const double q = base_edge_flux_[e];
@@ -505,12 +492,19 @@ std::vector<double> LinearizedFreeSurface::BaseFlowGains() const {
     } else if (b >= 0) {
       out[b] -= q;
       in[a] -= q;
+    } else {
+      rim_in[a] -= q;
     }
   }
+  std::vector<double> divergence(n), gain(n);
   for (int i = 0; i < n; ++i) {
+    divergence[i] = (out[i] - in[i] - rim_in[i]) / surface_.areas()[i];
     gain[i] = out[i] > 0.0 ? in[i] / out[i] : (in[i] > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
   }
-  return gain;
+  fields.emplace_back("base_flow_x", std::move(u));
+  fields.emplace_back("base_flow_y", std::move(v));
+  fields.emplace_back("base_flow_divergence", std::move(divergence));
+  fields.emplace_back("base_flow_gain", std::move(gain));
 }
 
 std::vector<int> LinearizedFreeSurface::UnresolvedSteps(double jump) const {

@@ -221,9 +221,11 @@ class LinearizedFreeSurface : public Mixed<double> {
   // Local flow: sets the base flow (all ranks' faces and edges) from the
   // relative fluxes of ctx.
   void SetBaseFlow(const BcContext& ctx);
-  // Inflow over outflow of each face under the base flow, the inflow across
-  // the rim (undisturbed water or the waterline) not counted (0 without it).
-  std::vector<double> BaseFlowGains() const;
+  // The local flow's face fields: the base flow, its horizontal divergence
+  // (the rate at which the conservative form feeds eta where it converges)
+  // and each face's gain, inflow from other faces over outflow (the inflow
+  // of undisturbed water or of the waterline across the rim not counted).
+  void AppendBaseFlowFields(std::vector<std::pair<std::string, std::vector<double>>>& fields) const;
   // The advecting velocity c at surface face i.
   Vector3 StreamAtFace(int i, double t) const;
   // The known part eta*_f and the implicit diagonal of every surface face
