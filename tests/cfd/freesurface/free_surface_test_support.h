@@ -1,10 +1,11 @@
-// Helpers of the free-surface tests: a box of water under a linearized free
-// surface (zmax) with slip walls, Prony's fit of a sampled damped
+// Helpers of the free-surface tests: a box mesh with its surface on zmax, a
+// box of water under a linearized free surface (zmax) with slip walls, Prony's fit of a sampled damped
 // oscillation, and the angular spread of a steady Kelvin pattern.
 #pragma once
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <memory>
@@ -18,6 +19,19 @@
 #include "tests/cfd/cfd_test_support.h"
 
 namespace kelvin::cfd::testing {
+
+// A box mesh of `cells` between min and max (z = 0 on top: the free surface
+// on zmax), its x sides plain patches.
+inline Mesh Box(std::array<int, 3> cells, bool polyhedral = false, Vector3 min = Vector3(0, 0, -1),
+                Vector3 max = Vector3(1, 1, 0)) {
+  BoxMeshOptions mo;
+  mo.min = min;
+  mo.max = max;
+  mo.cells = cells;
+  mo.polyhedral = polyhedral;
+  mo.kinds[0] = mo.kinds[1] = PatchKind::kPatch;
+  return MakeBoxMesh(mo);
+}
 
 // PIMPLE solver on `mesh` with the linearized free surface on zmax, slip
 // walls everywhere else (empty patches stay empty); *surface is set to the
