@@ -67,9 +67,33 @@ void ParseStructured(const ConfigNode& s, HullGridOptions& o) {
   o.keel_spacing = Number(s, "keel_spacing", o.keel_spacing, 0.0);
 }
 
+Eigen::Vector3d Corner(const ConfigNode& box, std::string_view key) {
+  const std::vector<double> v = box[key].As<std::vector<double>>();
+  if (v.size() != 3) box[key].Fail(fmt::format("[x, y, z] in metres, got {} numbers", v.size()));
+  return {v[0], v[1], v[2]};
+}
+
+// mesh.snappy.boxes: [{min: [x, y, z], max: [x, y, z], level: n}, ...]
+std::vector<SnappyBox> ParseSnappyBoxes(const ConfigNode& list) {
+  if (!list.IsSequence()) list.Fail("a list of boxes {min: [x, y, z], max: [x, y, z], level: n}");
+  std::vector<SnappyBox> boxes;
+  for (const ConfigNode& b : list.Items()) {
+    b.ExpectKeys({"min", "max", "level"});
+    const int level = b["level"].As<int>();
+    if (level < 0 || level > 8) b["level"].Fail("an integer in [0, 8]");
+    const SnappyBox box{Corner(b, "min"), Corner(b, "max"), level};
+    if ((box.max - box.min).minCoeff() <= 0) {
+      b["max"].Fail(fmt::format("a corner above min = [{}, {}, {}] in x, y and z, got [{}, {}, {}]", box.min.x(),
+                                box.min.y(), box.min.z(), box.max.x(), box.max.y(), box.max.z()));
+    }
+    boxes.push_back(box);
+  }
+  return boxes;
+}
+
 void ParseSnappy(const ConfigNode& s, SnappyOptions& o) {
   s.ExpectKeys({"base_cells_per_length", "hull_level", "wake_level", "near_level", "layers",
-                "expansion_ratio", "feature_angle", "openfoam_bashrc"});
+                "expansion_ratio", "feature_angle", "boxes", "openfoam_bashrc"});
   o.base_cells_per_length = Integer(s, "base_cells_per_length", o.base_cells_per_length, 2, 200);
   o.hull_level = Integer(s, "hull_level", o.hull_level, 0, 8);
   o.wake_level = Integer(s, "wake_level", o.wake_level, 0, 8);
@@ -100,6 +124,7 @@ void ParseSnappy(const ConfigNode& s, SnappyOptions& o) {
     if (!(o.feature_angle > 0.0 && o.feature_angle < 180.0))
       fa->Fail("an angle in degrees in (0, 180)");
   }
+  if (auto boxes = s.Find("boxes")) o.boxes = ParseSnappyBoxes(*boxes);
   o.openfoam_bashrc = s.Get<std::string>("openfoam_bashrc", o.openfoam_bashrc);
 }
 

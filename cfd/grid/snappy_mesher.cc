@@ -186,6 +186,18 @@ void SnappyOptions::Validate() const {
         "snappy option 'near_level' = {}: expected an integer in [wake_level, hull_level] = [{}, {}]",
         near_level, wake_level, hull_level));
   }
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const SnappyBox& b = boxes[i];
+    if (!b.min.allFinite() || !b.max.allFinite() || (b.max - b.min).minCoeff() <= 0) {
+      throw ConfigError(fmt::format(
+          "snappy option 'boxes[{}]' min = {}, max = {}: expected finite corners with min < max in x, y and z",
+          i, Vec(b.min), Vec(b.max)));
+    }
+    if (b.level < 0 || b.level > 8) {
+      throw ConfigError(
+          fmt::format("snappy option 'boxes[{}].level' = {}: expected an integer in [0, 8]", i, b.level));
+    }
+  }
   RequireRange("layers", layers, kAutoLayers, 50);
   if (!(final_layer_ratio >= 0 && final_layer_ratio <= 2) || !std::isfinite(final_layer_ratio)) {
     throw ConfigError(fmt::format(
@@ -398,8 +410,15 @@ void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o,
   s += "geometry\n{\n    hull.stl { type triSurfaceMesh; name hull; }\n";
   s += fmt::format("    nearHull {{ type searchableBox; min {}; max {}; }}\n", Vec(l.near_min),
                    Vec(l.near_max));
-  s += fmt::format("    kelvinWake {{ type searchableBox; min {}; max {}; }}\n}}\n\n",
-                   Vec(l.wake_min), Vec(l.wake_max));
+  s += fmt::format("    kelvinWake {{ type searchableBox; min {}; max {}; }}\n", Vec(l.wake_min),
+                   Vec(l.wake_max));
+  std::string box_levels;
+  for (std::size_t i = 0; i < o.boxes.size(); ++i) {
+    s += fmt::format("    userBox{} {{ type searchableBox; min {}; max {}; }}\n", i, Vec(o.boxes[i].min),
+                     Vec(o.boxes[i].max));
+    box_levels += fmt::format("        userBox{} {{ mode inside; levels ((1e15 {})); }}\n", i, o.boxes[i].level);
+  }
+  s += "}\n\n";
   s += fmt::format(
       "castellatedMeshControls\n{{\n    maxLocalCells 2000000;\n    maxGlobalCells 20000000;\n"
       "    minRefinementCells 0;\n    maxLoadUnbalance 0.10;\n    nCellsBetweenLevels 3;\n"
@@ -409,9 +428,9 @@ void WriteSnappyCase(const TriangleSurface& hull, const SnappyOptions& o,
       "    resolveFeatureAngle {:.6g};\n"
       "    refinementRegions\n    {{\n"
       "        nearHull {{ mode inside; levels ((1e15 {})); }}\n"
-      "        kelvinWake {{ mode inside; levels ((1e15 {})); }}\n    }}\n"
+      "        kelvinWake {{ mode inside; levels ((1e15 {})); }}\n{}    }}\n"
       "    locationInMesh {};\n    allowFreeStandingZoneFaces true;\n}}\n\n",
-      o.hull_level, o.hull_level, o.hull_level, o.feature_angle, near_level, wake_level,
+      o.hull_level, o.hull_level, o.hull_level, o.feature_angle, near_level, wake_level, box_levels,
       Vec(l.inside));
   s += "snapControls\n{\n    nSmoothPatch 3;\n    tolerance 2.0;\n    nSolveIter 50;\n    "
        "nRelaxIter 5;\n"

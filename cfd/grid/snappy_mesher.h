@@ -11,10 +11,23 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "cfd/geometry/triangle_surface.h"
 #include "cfd/mesh/mesh.h"
 
 namespace kelvin::cfd {
+
+// A box refined to `level` throughout (snappyHexMesh refinementRegions,
+// mode inside), in the mesh's frame (m): the frame of the hull as placed,
+// the one quality.txt and mesh.vtu use. It refines the hull's faces inside
+// it as well, so a bulb, a stagnation point or a rudder gets finer cells
+// than the rest of the hull.
+struct SnappyBox {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();
+  int level = 0;
+};
 
 struct SnappyOptions {
   // Domain extent in hull lengths L, as for the structured grid.
@@ -33,6 +46,10 @@ struct SnappyOptions {
   // Level of the near-hull box; kAutoLevel: (hull_level + wake_level + 1) / 2.
   static constexpr int kAutoLevel = -1;
   int near_level = kAutoLevel;
+  // Refinement boxes beyond the hull, near and wake levels (none by
+  // default). A family keeps their levels, so their cells coarsen with the
+  // base cells like the rest of the grid.
+  std::vector<SnappyBox> boxes;
   // Prism layers on the hull, sized relative to the hull cell size
   // (snappyHexMesh relativeSizes, finalLayerThickness = final_layer_ratio):
   // the layers shrink by the expansion ratio from the outermost towards the

@@ -155,6 +155,19 @@ TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
   EXPECT_THAT(
       ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  snappy: {layers: -3}")); }),
       HasSubstr("key 'mesh.snappy.layers' = '-3': expected 'auto' or an integer in [0, 50]"));
+  EXPECT_THAT(ErrorOf([] {
+                Parse(Edit("  y_plus: 1.0", "  snappy: {boxes: [{min: [0, 0, 0], max: [1, 1], level: 4}]}"));
+              }),
+              HasSubstr("key 'mesh.snappy.boxes[0].max' = (a list): expected [x, y, z] in metres, got 2 numbers"));
+  EXPECT_THAT(ErrorOf([] {
+                Parse(Edit("  y_plus: 1.0", "  snappy: {boxes: [{min: [0, 0, 0], max: [1, 1, 1]}]}"));
+              }),
+              HasSubstr("missing required key 'mesh.snappy.boxes[0].level'"));
+  EXPECT_THAT(ErrorOf([] {
+                Parse(Edit("  y_plus: 1.0", "  snappy: {boxes: [{min: [0, 0, 0], max: [1, -1, 1], level: 4}]}"));
+              }),
+              HasSubstr("key 'mesh.snappy.boxes[0].max' = (a list): expected a corner above min = [0, 0, 0] in x, y "
+                        "and z, got [1, -1, 1]"));
   EXPECT_THAT(ErrorOf([] { Parse(Edit("  y_plus: 1.0", "  domain: {depth: 0}")); }),
               HasSubstr("key 'mesh.domain.depth' = '0': expected a finite number > 0"));
   EXPECT_THAT(ErrorOf([] { Parse("mesh: [1, 2\n"); }), HasSubstr("case.yaml:2: YAML syntax error"));

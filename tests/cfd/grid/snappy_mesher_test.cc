@@ -83,6 +83,27 @@ TEST(SnappyMesherTest, DictionariesDescribeTheDoubleBodyDomain) {
   EXPECT_THROW(o.Validate(), ConfigError);
 }
 
+// A user's refinement box becomes a searchable box refined inside to its
+// level; a box without volume is refused, naming it.
+TEST(SnappyMesherTest, RefinementBoxesReachTheDictionary) {
+  ScopedTempDir dir;
+  const TriangleSurface hull = WigleySurface(2.0, 0.2, 0.125, 0.05, 40, 10);
+  SnappyOptions o;
+  o.boxes = {{{1.9, -0.05, -0.1}, {2.05, 0.05, 0}, 5}};
+  WriteSnappyCase(hull, o, dir.path());
+  const std::string snappy = Slurp(dir / "system/snappyHexMeshDict");
+  EXPECT_THAT(snappy, HasSubstr("userBox0 { type searchableBox; min (1.9 -0.05 -0.1); max (2.05 0.05 0); }"));
+  EXPECT_THAT(snappy, HasSubstr("userBox0 { mode inside; levels ((1e15 5)); }"));
+  o.boxes.push_back({{0, 0, -0.1}, {0.1, 0, 0}, 4});
+  try {
+    o.Validate();
+    ADD_FAILURE() << "a flat box was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("'boxes[1]' min = (0 0 -0.1), max = (0.1 0 0): expected finite corners "
+                                    "with min < max"));
+  }
+}
+
 // The layer table at the end of a snappyHexMesh log (OpenFOAM v1912 format):
 // the table before layer addition ("avg thickness") is not the result.
 TEST(SnappyMesherTest, ReadsTheLayersSnappyKept) {
