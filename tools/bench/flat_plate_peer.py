@@ -11,7 +11,11 @@ For each requested (Re_L, y+) the zero-pressure-gradient plate of cfd/verificati
     (kqRWallFunction: zero-gradient k; omegaWallFunction: the wall cell's omega fixed at the blend of the viscous
     and log values; nutUSpaldingWallFunction: the wall's nu_t from Spalding's law, zero at y+ about 1).
 The plate's C_F (one side) is compared with Schoenherr's line (the flat-plate line) and ITTC-57 (a ship-model
-correlation line, reported beside it).
+correlation line, reported beside it). On the wall-resolved grids (first cell at y+ 2 or less) the velocity
+profile at 0.8 L of each run is read as well (kelvin's `--profile`; OpenFOAM's cell centres and fields of its
+last iteration, the friction velocity from the wall cell, whose u+ = y+ at y+ about 1) and its log layer
+(50 < y+ < 300) is compared with the log law (kappa 0.41, B 5.0-5.2) and with the k-omega model's log-layer
+values (k+ = 1 / sqrt(beta*), omega+ y+ = 1 / (sqrt(beta*) kappa), nu_t = kappa u_tau y).
 
 Usage: tools/bench/flat_plate_peer.py --study build/ci/tools/bench/flat_plate_study
            [--case 1e7:1:100x80 --case 1e7:1:100x80:2 ...] [--iterations 6000] [--work DIR] [--write BENCHMARKS.md]
@@ -52,7 +56,7 @@ def schoenherr(re_):
 def run_kelvin(study, case, iterations, mesh_dir, log, wall_omega):
     cmd = [study, "--re", repr(case["re"]), "--y-plus", repr(case["y_plus"]), "--cells-x", str(case["cells_x"]),
            "--cells-y", str(case["cells_y"]), "--refinement", repr(case["refinement"]), "--initial-viscosity-ratio",
-           repr(START_RATIO), "--max-steps", str(iterations), "--wall-omega", wall_omega]
+           repr(START_RATIO), "--max-steps", str(iterations), "--wall-omega", wall_omega, "--profile"]
     if mesh_dir:
         cmd += ["--write-poly-mesh", mesh_dir]
     env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
@@ -64,7 +68,77 @@ def run_kelvin(study, case, iterations, mesh_dir, log, wall_omega):
     if out.returncode != 0 or not m:
         sys.exit(f"{' '.join(cmd)} failed:\n{out.stdout[-2000:]}{out.stderr[-2000:]}")
     return dict(C_F=float(m.group(1)), converged=m.group(2) == "true", steps=int(m.group(3)),
-                residual=float(m.group(4)), cells=int(m.group(5)), y_plus_mean=float(m.group(7)))
+                residual=float(m.group(4)), cells=int(m.group(5)), y_plus_mean=float(m.group(7)),
+                profile=kelvin_profile(out.stdout))
+
+
+def kelvin_profile(text):
+    """The rows of flat_plate_study --profile: y+, u+, nu_t / nu, k+ and omega+ y+."""
+    rows = []
+    for line in text.splitlines():
+        m = re.match(r"\s*y\+\s+(\S+) u\+\s+(\S+) .*nu_t/nu\s+(\S+) .* k\+\s+(\S+) omega\+ y\+\s+(\S+)", line)
+        if m:
+            rows.append(dict(zip(("y_plus", "u_plus", "nut_plus", "k_plus", "omega_y_plus"), map(float, m.groups()))))
+    return rows
+
+
+def openfoam_field(path):
+    """The internalField of an ASCII OpenFOAM volScalarField or volVectorField (a list of floats or tuples)."""
+    text = open(path).read()
+    m = re.search(r"internalField\s+nonuniform\s+List<(\w+)>\s*(\d+)\s*\(", text)
+    if not m:
+        sys.exit(f"{path}: no nonuniform internalField")
+    n, body = int(m.group(2)), text[m.end():]
+    if m.group(1) == "vector":
+        return [tuple(float(x) for x in v.split()) for v in re.findall(r"\(([^()]*)\)", body)[:n]]
+    return [float(x) for x in body.split(")")[0].split()[:n]]
+
+
+def openfoam_profile(d, re_, station=0.8):
+    """OpenFOAM's profile at x = station L (the cell column nearest to it; wall at y = 0, U = L = 1)."""
+    with open(os.path.join(d, "postProcess.log"), "w") as f:
+        subprocess.run(["bash", "-c", f"source {BASHRC} >/dev/null 2>&1; cd {d} && postProcess -func "
+                        "writeCellCentres -latestTime"], stdout=f, stderr=subprocess.STDOUT, check=True)
+    last = max((t for t in os.listdir(d) if re.fullmatch(r"[0-9.]+", t) and t != "0"), key=float)
+    fields = {n: openfoam_field(os.path.join(d, last, n)) for n in ("C", "U", "nut", "k", "omega")}
+    nu = 1.0 / re_
+    x = min((c[0] for c in fields["C"]), key=lambda v: abs(v - station))
+    column = sorted((i for i, c in enumerate(fields["C"]) if abs(c[0] - x) < 1e-9), key=lambda i: fields["C"][i][1])
+    wall = column[0]
+    u_tau = math.sqrt(nu * fields["U"][wall][0] / fields["C"][wall][1])
+    rows = []
+    for i in column:
+        y_plus = fields["C"][i][1] * u_tau / nu
+        rows.append(dict(y_plus=y_plus, u_plus=fields["U"][i][0] / u_tau, nut_plus=fields["nut"][i] / nu,
+                         k_plus=fields["k"][i] / u_tau ** 2, omega_y_plus=fields["omega"][i] * nu / u_tau ** 2 * y_plus))
+    return rows
+
+
+KAPPA, B_LOW, B_HIGH, BETA_STAR = 0.41, 5.0, 5.2, 0.09
+
+
+def log_layer(rows, low=50.0, high=300.0):
+    """The profile's log layer: the fitted kappa (slope of u+ against ln y+), the largest excursion of u+ outside
+    the log law's band, and the model's log-layer quantities against their ideal values."""
+    band = [r for r in rows if low < r["y_plus"] < high]
+    if len(band) < 3:
+        return None
+    xs = [math.log(r["y_plus"]) for r in band]
+    ys = [r["u_plus"] for r in band]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    slope = sum((a - mx) * (b - my) for a, b in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs)
+
+    def outside(r):
+        lo, hi = math.log(r["y_plus"]) / KAPPA + B_LOW, math.log(r["y_plus"]) / KAPPA + B_HIGH
+        u = r["u_plus"]
+        return 0.0 if lo <= u <= hi else (u / lo - 1 if u < lo else u / hi - 1)
+
+    worst = max(band, key=lambda r: abs(outside(r)))
+    near = lambda y: min(band, key=lambda r: abs(math.log(r["y_plus"] / y)))  # noqa: E731
+    return dict(kappa=1.0 / slope, worst=outside(worst), worst_at=worst["y_plus"],
+                within_3=sum(abs(outside(r)) <= 0.03 for r in band), cells=len(band),
+                nut_ratio=[near(y)["nut_plus"] / (KAPPA * near(y)["y_plus"]) for y in (60.0, 250.0)],
+                k_plus=near(250.0)["k_plus"], omega_y_plus=near(250.0)["omega_y_plus"])
 
 
 def openfoam_case(d, mesh_dir, re_, iterations):
@@ -159,6 +233,7 @@ def main():
         openfoam_case(os.path.join(d, "openfoam"), os.path.join(d, "mesh"), re_, args.iterations)
         f = run_openfoam(os.path.join(d, "openfoam"), os.path.join(d, "simpleFoam.log"))
         f["C_F"] = f["viscous"][-1] / (0.5 * 1.0 * 1.0 * span_of(os.path.join(d, "mesh")))
+        f["profile"] = openfoam_profile(os.path.join(d, "openfoam"), re_) if case["y_plus"] <= 2 else []
         rows.append((case, k, kp, f))
         print(f"{spec}: kelvin C_F {k['C_F']:.5e} (point-value wall omega {kp['C_F']:.5e}), simpleFoam {f['C_F']:.5e}, Schoenherr {schoenherr(re_):.5e}",
               flush=True)
@@ -189,7 +264,34 @@ uses (`--wall-omega point`); the last column compares the second with simpleFoam
                      f"{kp['C_F']:.5e}{'' if kp['converged'] else ' (NOT converged)'} | {pct(kp['C_F'], s)} | "
                      f"{f['C_F']:.5e} | {pct(f['C_F'], s)} | {f['iterations']} ({'yes' if f['converged'] else 'no'}, "
                      f"{f['residual']:.1e}) | {kp['C_F'] / f['C_F']:.4f} |")
+    lines += log_layer_table(rows)
     write_or_print(args.write, NAME, "\n".join(lines) + "\n")
+
+
+def log_layer_table(rows):
+    """The wall-resolved runs' log layers at 0.8 L, kelvin (both wall omegas) and simpleFoam side by side."""
+    out = ["", f"The log layer at 0.8 L of the wall-resolved runs ({50} < y+ < {300}): kappa from the slope of u+ against "
+           f"ln y+ (the log law's {KAPPA}); the largest excursion of u+ outside the log law's band (B {B_LOW}-{B_HIGH}) "
+           "and the cells within 3% of it; nu_t / (kappa u_tau y) at y+ 60 and 250 (1 in the model's log layer); k+ "
+           f"and omega+ y+ at y+ 250 (the model's log layer: {1 / math.sqrt(BETA_STAR):.3f} and "
+           f"{1 / (math.sqrt(BETA_STAR) * KAPPA):.3f}).", "",
+           "| Re_L | grid | run | C_F vs Schoenherr | kappa fitted | largest excursion (at y+) | cells within 3% | "
+           "nu_t / (kappa u_tau y) at y+ 60, 250 | k+ | omega+ y+ |",
+           "| ---: | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for case, k, kp, f in rows:
+        if case["y_plus"] > 2:
+            continue
+        grid = f"{case['cells_x']} x {case['cells_y']}" + (f", x{case['refinement']:g}" if case["refinement"] != 1 else "")
+        for name, run in (("kelvin", k), ("kelvin, point-value wall omega", kp), ("simpleFoam", f)):
+            ll = log_layer(run["profile"])
+            if ll is None:
+                out.append(f"| {case['re']:.0e} | {grid} | {name} | | no profile | | | | | |")
+                continue
+            out.append(f"| {case['re']:.0e} | {grid} | {name} | {100 * (run['C_F'] / schoenherr(case['re']) - 1):+.2f}% | "
+                       f"{ll['kappa']:.3f} | {100 * ll['worst']:+.2f}% ({ll['worst_at']:.0f}) | "
+                       f"{ll['within_3']} of {ll['cells']} | {ll['nut_ratio'][0]:.3f}, {ll['nut_ratio'][1]:.3f} | "
+                       f"{ll['k_plus']:.3f} | {ll['omega_y_plus']:.3f} |")
+    return out
 
 
 if __name__ == "__main__":
