@@ -411,6 +411,12 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
           o.base_cells_per_length, run.hull_cell, o.hull_level, run.layers, o.expansion_ratio,
           run.final_layer_ratio, run.first_layer_thickness,
           YPlusAt(0.5 * run.first_layer_thickness, c.reynolds, length), o.y_plus);
+      for (const SnappyBox& b : o.boxes) {
+        extra += fmt::format("refinement box [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m: level {}, "
+                             "cells {:.4g} m\n",
+                             b.min.x(), b.max.x(), b.min.y(), b.max.y(), b.min.z(), b.max.z(), b.level,
+                             length / o.base_cells_per_length / std::pow(2.0, b.level));
+      }
       if (run.layers_kept >= 0) {
         extra += fmt::format(
             "layers kept by snappyHexMesh: {:.2f} of {} per hull face on average, {:.1f}% of the "
