@@ -107,6 +107,8 @@ def main():
     ap.add_argument("--viscous-rt", type=float, default=None, help="the viscous reference R_T (N), if known")
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench", "dalembert"))
     ap.add_argument("--write", help="BENCHMARKS.md to update (default: print the section)")
+    ap.add_argument("--reuse", action="store_true",
+                    help="take a variant's runs from an earlier invocation in --work when its gci.yaml is there")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
     if not os.path.exists(os.path.join(args.grids, "family.txt")):
@@ -116,17 +118,19 @@ def main():
     tables = []
     for name, overrides in variants:
         runs = os.path.join(args.work, name)
-        run([args.kelvin, "gci", variant(args.work, name, overrides), "--grids", args.grids, "--outputs", "C_P",
-             "--runs", runs, "--rerun", "--no-progress",
-             # the base cells are whole numbers per length (28, 20, 14), so the ratios differ by 1%
-             "--ratio-tolerance", "0.1"], os.path.join(args.work, f"gci_{name}.log"))
+        if not (args.reuse and os.path.exists(os.path.join(runs, "gci.yaml"))):
+            run([args.kelvin, "gci", variant(args.work, name, overrides), "--grids", args.grids, "--outputs", "C_P",
+                 "--runs", runs, "--rerun", "--no-progress",
+                 # the base cells are whole numbers per length (28, 20, 14), so the ratios differ by 1%
+                 "--ratio-tolerance", "0.1"], os.path.join(args.work, f"gci_{name}.log"))
         with open(os.path.join(runs, "gci.yaml")) as f:
             report = yaml.safe_load(f)
         rows = []
         for g in sorted(report["grids"], key=lambda g: -g["level"]):
             r = wall_cp(g["directory"])
             r.update(level=g["level"], cells=g["cells"], steps=g["steps"], settled=g["steady_converged"],
-                     cpu=g["cpu_seconds"], hull=hull_cell(os.path.join(args.grids, f"grid{g['level']}")))
+                     cpu=g["cpu_seconds"], hull=hull_cell(os.path.join(args.grids, f"grid{g['level']}")),
+                     h=g["h"])
             rows.append(r)
         tables.append((name, overrides, rows))
     write_or_print(args.write, NAME, render(tables, rt, args.grids))
@@ -139,26 +143,32 @@ def render(tables, rt, grids):
 
 Run by `tools/bench/dalembert.py` on {date}. The submerged 5:1 prolate spheroid (L = 1 m, axis 0.25 m under a slip
 lid) of `data/cases/resistance/spheroid_dalembert.yaml` at U = {SPEED} m/s, slip walls everywhere and no turbulence
-model, on the snappy family `{rel}` (no prism layers; grid 3 coarsest). d'Alembert: R_P = 0 and C_p = 1 at both
+model, on the snappy family `{rel}` of `data/cases/resistance/spheroid_dalembert_mesh.yaml` (no prism layers;
+each end refined one level beyond the hull cell in a box; grid 3 coarsest). d'Alembert: R_P = 0 and C_p = 1 at both
 stagnation points. C_p max is the largest wall-face value (what the forces integrate: the cell value under the
 zero-gradient pressure condition, carried to the wall by the curved-wall condition's dp/dn); fore and aft are the parts of R_P from x > L/2 and x < L/2; the order is
-that of R_P against zero between a grid and the next coarser, with h the hull cell size."""]
+that of R_P against zero between a grid and the next coarser, with h the hull cell size, and beside it with Celik's
+h = (V/N)^(1/3) of the whole grid (family.txt)."""]
     if rt:
         out.append(f"The viscous reference: R_T = {rt:.4g} N (spheroid_double_body.yaml, no-slip, k-omega SST).")
     for name, overrides, rows in tables:
         out.append(f"\n### {name}" + (f": the case with `{overrides}`" if overrides else ": the case as it is") + "\n")
         out.append("| grid | cells | hull cell (mm) | R_P (N) | " + ("R_P / R_T | " if rt else "") +
-                   "C_P | order | C_p max, bow | C_p max, stern | fore (N) | aft (N) | steps (settled) | CPU (s) |")
+                   "C_P | order | order, (V/N)^(1/3) | C_p max, bow | C_p max, stern | fore (N) | aft (N) | "
+                   "steps (settled) | CPU (s) |")
         out.append("| ---: | ---: | ---: | ---: | " + ("---: | " if rt else "") +
-                   "---: | ---: | ---: | ---: | ---: | ---: | --- | ---: |")
+                   "---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: |")
         prev = None
         for r in rows:
-            order = "" if prev is None else (
-                f"{math.log(prev['R_P'] / r['R_P']) / math.log(prev['hull'] / r['hull']):.2f}"
-                if prev["R_P"] > 0 and r["R_P"] > 0 else "n/a")
+            def order(h):
+                if prev is None:
+                    return ""
+                if prev["R_P"] <= 0 or r["R_P"] <= 0:
+                    return "n/a"
+                return f"{math.log(prev['R_P'] / r['R_P']) / math.log(prev[h] / r[h]):.2f}"
             out.append(f"| {r['level']} | {r['cells']:,} | {1000 * r['hull']:.2f} | {r['R_P']:.4f} | " +
                        (f"{100 * r['R_P'] / rt:.2f}% | " if rt else "") +
-                       f"{r['C_P']:.3e} | {order} | {r['cp_bow']:.3f} | {r['cp_stern']:.3f} | {r['fore']:+.4f} | "
+                       f"{r['C_P']:.3e} | {order('hull')} | {order('h')} | {r['cp_bow']:.3f} | {r['cp_stern']:.3f} | {r['fore']:+.4f} | "
                        f"{r['aft']:+.4f} | {r['steps']} ({'yes' if r['settled'] else 'NO'}) | {r['cpu']:.0f} |")
             prev = r
     return "\n".join(out) + "\n"
