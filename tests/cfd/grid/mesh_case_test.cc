@@ -164,6 +164,10 @@ TEST(MeshCaseTest, BadInputGivesOneClearMessage) {
               }),
               HasSubstr("missing required key 'mesh.snappy.boxes[0].level'"));
   EXPECT_THAT(ErrorOf([] {
+                Parse(Edit("  y_plus: 1.0", "  snappy: {boxes: [{min: [0, .nan, 0], max: [1, 1, 1], level: 4}]}"));
+              }),
+              HasSubstr("key 'mesh.snappy.boxes[0].min[1]' = '.nan': expected a finite number"));
+  EXPECT_THAT(ErrorOf([] {
                 Parse(Edit("  y_plus: 1.0", "  snappy: {boxes: [{min: [0, 0, 0], max: [1, -1, 1], level: 4}]}"));
               }),
               HasSubstr("key 'mesh.snappy.boxes[0].max' = (a list): expected a corner above min = [0, 0, 0] in x, y "
