@@ -415,7 +415,7 @@ std::vector<GridSummary> RunMeshCase(const MeshCase& c, int family,
         extra += fmt::format("refinement box [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m: level {}, "
                              "cells {:.4g} m\n",
                              b.min.x(), b.max.x(), b.min.y(), b.max.y(), b.min.z(), b.max.z(), b.level,
-                             length / o.base_cells_per_length / std::pow(2.0, b.level));
+                             run.hull_cell * std::pow(2.0, o.hull_level - b.level));
       }
       if (run.layers_kept >= 0) {
         extra += fmt::format(

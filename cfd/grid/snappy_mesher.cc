@@ -44,6 +44,11 @@ std::string Header(const char* object) {
       object);
 }
 
+// The cell size at refinement `level`: length / base_cells_per_length / 2^level.
+double SnappyLevelCell(const SnappyOptions& o, double length, int level) {
+  return length / o.base_cells_per_length / std::pow(2.0, level);
+}
+
 std::string Vec(const Eigen::Vector3d& v) {
   return fmt::format("({:.9g} {:.9g} {:.9g})", v.x(), v.y(), v.z());
 }
@@ -232,8 +237,7 @@ void SnappyOptions::Validate() const {
 int SnappyLayerCount(const SnappyOptions& o, double length) {
   if (o.layers != SnappyOptions::kAutoLayers) return o.layers;
   const double first = FirstCellHeight(o.y_plus, o.reynolds, length);
-  const double surface_cell = length / o.base_cells_per_length / std::pow(2.0, o.hull_level);
-  const double ratio = 0.5 * surface_cell / first;
+  const double ratio = 0.5 * SnappyHullCell(o, length) / first;
   if (ratio <= 1.0) return 1;
   if (o.expansion_ratio <= 1.0 + 1e-9) return std::clamp(static_cast<int>(std::ceil(ratio)), 1, 50);
   return std::clamp(static_cast<int>(std::ceil(std::log(ratio) / std::log(o.expansion_ratio))) + 1,
@@ -257,9 +261,7 @@ int SnappyWakeLevel(const SnappyOptions& o, double length) {
   return level;
 }
 
-double SnappyHullCell(const SnappyOptions& o, double length) {
-  return length / o.base_cells_per_length / std::pow(2.0, o.hull_level);
-}
+double SnappyHullCell(const SnappyOptions& o, double length) { return SnappyLevelCell(o, length, o.hull_level); }
 
 double SnappyFinalLayerRatio(const SnappyOptions& o, double length) {
   if (o.final_layer_ratio > 0) return o.final_layer_ratio;
@@ -507,7 +509,7 @@ Mesh RunSnappy(const TriangleSurface& hull, const SnappyOptions& o, const fs::pa
   r.final_layer_ratio = SnappyFinalLayerRatio(o, length);
   r.layers = SnappyLayerCount(o, length);
   r.wake_level = SnappyWakeLevel(o, length);
-  r.wake_cell = length / o.base_cells_per_length / std::pow(2.0, r.wake_level);
+  r.wake_cell = SnappyLevelCell(o, length, r.wake_level);
   ReadSnappyLayerTable(case_dir / "log.snappyHexMesh", "hull", &r.layers_kept,
                        &r.thickness_kept_percent);
   Mesh mesh = ReadPolyMesh(case_dir / "constant" / "polyMesh");
