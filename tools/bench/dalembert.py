@@ -136,6 +136,15 @@ def main():
     write_or_print(args.write, NAME, render(tables, rt, args.grids))
 
 
+def order(coarse, fine, h):
+    """The observed order of R_P against zero between two grids, h their cell size (the row's key `h`)."""
+    if coarse is None:
+        return ""
+    if coarse["R_P"] <= 0 or fine["R_P"] <= 0:
+        return "n/a"
+    return f"{math.log(coarse['R_P'] / fine['R_P']) / math.log(coarse[h] / fine[h]):.2f}"
+
+
 def render(tables, rt, grids):
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     rel = os.path.relpath(grids, ROOT)
@@ -160,16 +169,10 @@ h = (V/N)^(1/3) of the whole grid (family.txt)."""]
                    "---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: |")
         prev = None
         for r in rows:
-            def order(h):
-                if prev is None:
-                    return ""
-                if prev["R_P"] <= 0 or r["R_P"] <= 0:
-                    return "n/a"
-                return f"{math.log(prev['R_P'] / r['R_P']) / math.log(prev[h] / r[h]):.2f}"
             out.append(f"| {r['level']} | {r['cells']:,} | {1000 * r['hull']:.2f} | {r['R_P']:.4f} | " +
                        (f"{100 * r['R_P'] / rt:.2f}% | " if rt else "") +
-                       f"{r['C_P']:.3e} | {order('hull')} | {order('h')} | {r['cp_bow']:.3f} | {r['cp_stern']:.3f} | {r['fore']:+.4f} | "
-                       f"{r['aft']:+.4f} | {r['steps']} ({'yes' if r['settled'] else 'NO'}) | {r['cpu']:.0f} |")
+                       f"{r['C_P']:.3e} | {order(prev, r, 'hull')} | {order(prev, r, 'h')} | {r['cp_bow']:.3f} | "
+                       f"{r['cp_stern']:.3f} | {r['fore']:+.4f} | {r['aft']:+.4f} | {r['steps']} ({'yes' if r['settled'] else 'NO'}) | {r['cpu']:.0f} |")
             prev = r
     return "\n".join(out) + "\n"
 

@@ -28,6 +28,7 @@ import math
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -115,18 +116,26 @@ def openfoam_profile(d, re_, station=0.8):
 
 
 KAPPA, B_LOW, B_HIGH, BETA_STAR = 0.41, 5.0, 5.2, 0.09
+LOG_LAYER = (50.0, 300.0)  # the y+ range of the log-law comparison
+WALL_RESOLVED = 2.0  # target first-cell y+ up to which a run's profile is read
 
 
-def log_layer(rows, low=50.0, high=300.0):
+def pct(a, b):
+    return f"{100 * (a / b - 1):+.2f}%"
+
+
+def grid_label(case):
+    """Cells along and across the plate, and the refinement factor when there is one."""
+    return f"{case['cells_x']} x {case['cells_y']}" + (f", x{case['refinement']:g}" if case["refinement"] != 1 else "")
+
+
+def log_layer(rows, low=LOG_LAYER[0], high=LOG_LAYER[1]):
     """The profile's log layer: the fitted kappa (slope of u+ against ln y+), the largest excursion of u+ outside
     the log law's band, and the model's log-layer quantities against their ideal values."""
     band = [r for r in rows if low < r["y_plus"] < high]
     if len(band) < 3:
         return None
-    xs = [math.log(r["y_plus"]) for r in band]
-    ys = [r["u_plus"] for r in band]
-    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
-    slope = sum((a - mx) * (b - my) for a, b in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs)
+    slope = statistics.linear_regression([math.log(r["y_plus"]) for r in band], [r["u_plus"] for r in band]).slope
 
     def outside(r):
         lo, hi = math.log(r["y_plus"]) / KAPPA + B_LOW, math.log(r["y_plus"]) / KAPPA + B_HIGH
@@ -233,12 +242,11 @@ def main():
         openfoam_case(os.path.join(d, "openfoam"), os.path.join(d, "mesh"), re_, args.iterations)
         f = run_openfoam(os.path.join(d, "openfoam"), os.path.join(d, "simpleFoam.log"))
         f["C_F"] = f["viscous"][-1] / (0.5 * 1.0 * 1.0 * span_of(os.path.join(d, "mesh")))
-        f["profile"] = openfoam_profile(os.path.join(d, "openfoam"), re_) if case["y_plus"] <= 2 else []
+        f["profile"] = openfoam_profile(os.path.join(d, "openfoam"), re_) if case["y_plus"] <= WALL_RESOLVED else []
         rows.append((case, k, kp, f))
         print(f"{spec}: kelvin C_F {k['C_F']:.5e} (point-value wall omega {kp['C_F']:.5e}), simpleFoam {f['C_F']:.5e}, Schoenherr {schoenherr(re_):.5e}",
               flush=True)
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    pct = lambda a, b: f"{100 * (a / b - 1):+.2f}%"  # noqa: E731
     lines = [f"""## flat_plate_peer: the plate's friction, kelvin's SST against OpenFOAM's on the same mesh (issue 22, acceptance 4)
 
 Run by `tools/bench/flat_plate_peer.py` on {date}. The zero-pressure-gradient plate of
@@ -258,7 +266,7 @@ uses (`--wall-omega point`); the last column compares the second with simpleFoam
     for case, k, kp, f in rows:
         re_ = case["re"]
         s, i = schoenherr(re_), ittc57(re_)
-        grid = f"{case['cells_x']} x {case['cells_y']}" + (f", x{case['refinement']:g}" if case["refinement"] != 1 else "")
+        grid = grid_label(case)
         lines.append(f"| {re_:.0e} | {k['y_plus_mean']:.1f} | {grid} | {k['cells']:,} | {k['C_F']:.5e} | {pct(k['C_F'], s)} | "
                      f"{pct(k['C_F'], i)} | {k['steps']} ({'yes' if k['converged'] else 'NO'}, {k['residual']:.1e}) | "
                      f"{kp['C_F']:.5e}{'' if kp['converged'] else ' (NOT converged)'} | {pct(kp['C_F'], s)} | "
@@ -270,7 +278,7 @@ uses (`--wall-omega point`); the last column compares the second with simpleFoam
 
 def log_layer_table(rows):
     """The wall-resolved runs' log layers at 0.8 L, kelvin (both wall omegas) and simpleFoam side by side."""
-    out = ["", f"The log layer at 0.8 L of the wall-resolved runs ({50} < y+ < {300}): kappa from the slope of u+ against "
+    out = ["", f"The log layer at 0.8 L of the wall-resolved runs ({LOG_LAYER[0]:g} < y+ < {LOG_LAYER[1]:g}): kappa from the slope of u+ against "
            f"ln y+ (the log law's {KAPPA}); the largest excursion of u+ outside the log law's band (B {B_LOW}-{B_HIGH}) "
            "and the cells within 3% of it; nu_t / (kappa u_tau y) at y+ 60 and 250 (1 in the model's log layer); k+ "
            f"and omega+ y+ at y+ 250 (the model's log layer: {1 / math.sqrt(BETA_STAR):.3f} and "
@@ -279,15 +287,15 @@ def log_layer_table(rows):
            "nu_t / (kappa u_tau y) at y+ 60, 250 | k+ | omega+ y+ |",
            "| ---: | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for case, k, kp, f in rows:
-        if case["y_plus"] > 2:
+        if case["y_plus"] > WALL_RESOLVED:
             continue
-        grid = f"{case['cells_x']} x {case['cells_y']}" + (f", x{case['refinement']:g}" if case["refinement"] != 1 else "")
+        grid = grid_label(case)
         for name, run in (("kelvin", k), ("kelvin, point-value wall omega", kp), ("simpleFoam", f)):
             ll = log_layer(run["profile"])
             if ll is None:
                 out.append(f"| {case['re']:.0e} | {grid} | {name} | | no profile | | | | | |")
                 continue
-            out.append(f"| {case['re']:.0e} | {grid} | {name} | {100 * (run['C_F'] / schoenherr(case['re']) - 1):+.2f}% | "
+            out.append(f"| {case['re']:.0e} | {grid} | {name} | {pct(run['C_F'], schoenherr(case['re']))} | "
                        f"{ll['kappa']:.3f} | {100 * ll['worst']:+.2f}% ({ll['worst_at']:.0f}) | "
                        f"{ll['within_3']} of {ll['cells']} | {ll['nut_ratio'][0]:.3f}, {ll['nut_ratio'][1]:.3f} | "
                        f"{ll['k_plus']:.3f} | {ll['omega_y_plus']:.3f} |")
