@@ -196,10 +196,37 @@ std::string ResistanceMonitor::WriteWaveMaking(data::H5Writer& w) const {
   }
   Scalar(w, "C_P_double_body", cp_db, "1", "pressure resistance coefficient of the double-body run on the same grid");
   Scalar(w, "double_body_speed", u_db, "m/s", "speed of that double-body run");
+  const double rw = (rp / q - cp_db) * q;
   Scalar(w, "C_W", rp / q - cp_db, "1", "wave-making part C_P - C_P(double body)");
-  Scalar(w, "R_W", (rp / q - cp_db) * q, "N", "wave-making resistance C_W 0.5 rho S U^2");
+  Scalar(w, "R_W", rw, "N", "wave-making resistance C_W 0.5 rho S U^2");
   return fmt::format("; wave-making C_W = C_P - C_P(double body at {:.4g} m/s) = {:.5e} (R_W = {:.5g} N)", u_db,
-                     rp / q - cp_db, (rp / q - cp_db) * q);
+                     rp / q - cp_db, rw) +
+         NegativeWavePartWarning(rw, rows_.back()[1]);
+}
+
+std::string ResistanceMonitor::LinearizationHint() const {
+  using L = LinearizedFreeSurfaceOptions::Linearization;
+  if (!free_surface_) return "this run has no free surface: is double_body the run meant?";
+  if (free_surface_->options().linearization == L::kUniformStream) {
+    return "linearization uniform_stream: the Neumann-Kelvin condition raises a spurious crest over a shallow "
+           "stern run; compare linearization local_flow";
+  }
+  return "linearization local_flow: check the unresolved-steps warning and the surface fields base_flow and "
+         "base_flow_gain";
+}
+
+std::string ResistanceMonitor::NegativeWavePartWarning(double r_w, double r_t) const {
+  const double resolution = (std::isfinite(tolerance_) ? tolerance_ : 1e-3) * std::abs(r_t);
+  if (!(r_w < -resolution)) return "";
+  const std::string warning = fmt::format(
+      "WARNING: the free surface lowered the pressure resistance by {:.4g} N against the double body on the same "
+      "grid ({:.2g}% of R_T): the "
+      "waves of a ship in steady motion carry energy away, so their resistance is positive. This wave part is an "
+      "error of the free-surface condition on this hull or grid ({}; docs/formulation.md sections 3.1 and 5.3), "
+      "and R_T is low by at least as much",
+      -r_w, -100.0 * r_w / std::abs(r_t), LinearizationHint());
+  spdlog::warn("{}", warning);
+  return "\n  " + warning;
 }
 
 std::vector<std::string> ResistanceMonitor::Finish(const PimpleSolver& solver) {

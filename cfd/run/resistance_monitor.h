@@ -9,7 +9,10 @@
 // surface the wave profile along the hull, the wave cuts and the whole
 // pattern. With `double_body` (resistance.h5 of a double-body run on the
 // same grid) also the wave-making part C_W = C_P - C_P(double body) and
-// R_W = C_W 0.5 rho S U^2.
+// R_W = C_W 0.5 rho S U^2, and a loud warning when R_W is negative beyond
+// the steady tolerance of R_T: steady waves take energy from the ship
+// (docs/formulation.md section 5.3). (R_P at the rigid lid's release is no
+// substitute: on the DTC it lies 2.8 N above the settled double body's.)
 //
 //   resistance:
 //     hull: hull                  # wall patch whose force is the resistance
@@ -61,6 +64,11 @@ class ResistanceMonitor final : public Monitor {
   // at U^2 / 4g): their count in `w`, and a warning line when there are any.
   std::string UnresolvedStepsWarning(data::H5Writer& w) const;
   std::string WriteWaveMaking(data::H5Writer& writer) const;
+  // A loud line when the wave part R_W (N) is negative beyond the steady
+  // criterion's tolerance of |R_T| (empty otherwise).
+  std::string NegativeWavePartWarning(double r_w, double r_t) const;
+  // Where to look, by the run's linearization of the kinematic condition.
+  std::string LinearizationHint() const;
   // 0.5 rho S U^2 (N): the scale of the coefficients.
   double DynamicForce() const { return 0.5 * rho_ * reference_.area * reference_.speed * reference_.speed; }
 

@@ -2,11 +2,14 @@
 // state (no time step is solved): each gets face forces set by hand on the
 // hull patch and a step record, and must return the sums, arms, axes and
 // scales that follow in closed form from those forces and the mesh.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cfd/run/captive_sampler.h"
@@ -156,6 +159,44 @@ TEST(ResistanceMonitor, FrictionFarFromIttc57IsALoudWarning) {
     EXPECT_EQ(report[0].find("WARNING: the friction on 'obstacle' is 0.60 of the ITTC-57 line") != std::string::npos,
               ratio < 0.9)
         << report[0];
+  }
+}
+
+// The wave part against a double body on the same grid: R_W = R_P - R_P(double
+// body) by coefficients. A ship's steady waves take energy from it, so a
+// negative R_W beyond the steady tolerance of R_T (1e-3 without a steady:
+// section) is a loud warning (the DTC's uniform-stream wave part was -3.4 N);
+// a positive one, or one within the tolerance, is not.
+TEST(ResistanceMonitor, NegativeWavePartIsALoudWarning) {
+  kelvin::testing::ScopedTempDir tmp;
+  const std::string reference = "reference: {speed: 2, direction: [-1, 0, 0], area: 3, length: 1.5}\n";
+  // Drives one monitor with a pressure force of `per_face` N per hull face against the flow.
+  auto report = [&](const std::string& directory, const std::string& resistance, double per_face) {
+    const Case c = Load(reference + "time: {dt: 0.1, end: 1}\noutput: {directory: " + directory +
+                            ", forces: [obstacle]}\nresistance: " + resistance + "\n",
+                        "noSlip");
+    ResistanceMonitor monitor(c);
+    const int hull = c.mesh->FindPatch("obstacle");
+    StepForces forces;
+    forces.Set(hull, Uniform(*c.mesh, hull, Vector3(-per_face, 0, 0), Vector3(0, 0, 0)));
+    StepSummary step;
+    SteadyStatus steady;
+    History history;
+    StepRecord record{step, forces, steady};
+    record.last = true;
+    monitor.AfterStep(*c.solver, record, history);
+    return std::make_pair(monitor.Finish(*c.solver).at(0), c.mesh->patches()[hull].size);
+  };
+  const std::string db = (tmp.path() / "db").string();
+  report(db, "{hull: obstacle}", 1.0);
+  for (double per_face : {0.8, 0.9999, 1.2}) {
+    const std::string out = (tmp.path() / fmt::format("fs{}", per_face)).string();
+    const auto [text, n] = report(out, "{hull: obstacle, double_body: " + db + "/resistance.h5}", per_face);
+    EXPECT_NEAR(data::H5Reader(std::filesystem::path(out) / "resistance.h5").Read("R_W").at(0), (per_face - 1.0) * n,
+                1e-9 * n);
+    EXPECT_EQ(text.find("WARNING: the free surface lowered the pressure resistance by") != std::string::npos,
+              per_face < 0.9)
+        << text;
   }
 }
 
