@@ -88,6 +88,24 @@ output: {directory: out, forces: [obstacle], captive: true}
   EXPECT_NEAR(s.prime.N, (0.5 * sum_y - sum_x) / (q * 2.0), 1e-12);
 }
 
+// One recorded last step of a resistance monitor on `c` with the force
+// `pressure` + `viscous` on every hull face; the report's summary.
+std::string ReportOfOneStep(const Case& c, const Vector3& pressure, const Vector3& viscous) {
+  ResistanceMonitor monitor(c);
+  const int hull = c.mesh->FindPatch("obstacle");
+  StepForces forces;
+  forces.Set(hull, Uniform(*c.mesh, hull, pressure, viscous));
+  StepSummary step;
+  SteadyStatus steady;
+  History history;
+  StepRecord record{step, forces, steady};
+  record.last = true;
+  monitor.AfterStep(*c.solver, record, history);
+  const std::vector<std::string> report = monitor.Finish(*c.solver);
+  EXPECT_EQ(report.size(), 1u);
+  return report.at(0);
+}
+
 TEST(ResistanceMonitor, SplitAndCoefficientsOfAGivenForceField) {
   kelvin::testing::ScopedTempDir tmp;
   const Case c = Load("reference: {speed: 2, direction: [-1, 0, 0], area: 3, length: 1.5}\n"
@@ -140,25 +158,14 @@ TEST(ResistanceMonitor, FrictionFarFromIttc57IsALoudWarning) {
                         "reference_speed: 2}}\ntime: {dt: 0.1, end: 1}\noutput: {directory: " +
                             tmp.path().string() + ", forces: [obstacle]}\nresistance: {hull: obstacle}\n",
                         "noSlip");
-    ResistanceMonitor monitor(c);
-    const int hull = c.mesh->FindPatch("obstacle");
-    const double n = c.mesh->patches()[hull].size;
+    const double n = c.mesh->patches()[c.mesh->FindPatch("obstacle")].size;
     const double q = 0.5 * 998.0 * 3.0 * 2.0 * 2.0, re = 2.0 * 1.5 / 1.0e-2;
     const double c_f0 = 0.075 / std::pow(std::log10(re) - 2.0, 2);
-    StepForces forces;
-    forces.Set(hull, Uniform(*c.mesh, hull, Vector3(-1, 0, 0), Vector3(-ratio * c_f0 * q / n, 0, 0)));
-    StepSummary step;
-    SteadyStatus steady;
-    History history;
-    StepRecord record{step, forces, steady};
-    record.last = true;
-    monitor.AfterStep(*c.solver, record, history);
-    const std::vector<std::string> report = monitor.Finish(*c.solver);
-    ASSERT_EQ(report.size(), 1u);
+    const std::string report = ReportOfOneStep(c, Vector3(-1, 0, 0), Vector3(-ratio * c_f0 * q / n, 0, 0));
     EXPECT_NEAR(data::H5Reader(tmp.path() / "resistance.h5").Read("C_F_over_ITTC57").at(0), ratio, 1e-12);
-    EXPECT_EQ(report[0].find("WARNING: the friction on 'obstacle' is 0.60 of the ITTC-57 line") != std::string::npos,
+    EXPECT_EQ(report.find("WARNING: the friction on 'obstacle' is 0.60 of the ITTC-57 line") != std::string::npos,
               ratio < 0.9)
-        << report[0];
+        << report;
   }
 }
 
@@ -170,22 +177,13 @@ TEST(ResistanceMonitor, FrictionFarFromIttc57IsALoudWarning) {
 TEST(ResistanceMonitor, NegativeWavePartIsALoudWarning) {
   kelvin::testing::ScopedTempDir tmp;
   const std::string reference = "reference: {speed: 2, direction: [-1, 0, 0], area: 3, length: 1.5}\n";
-  // Drives one monitor with a pressure force of `per_face` N per hull face against the flow.
+  // One monitor with a pressure force of `per_face` N per hull face against the flow; its summary and hull faces.
   auto report = [&](const std::string& directory, const std::string& resistance, double per_face) {
     const Case c = Load(reference + "time: {dt: 0.1, end: 1}\noutput: {directory: " + directory +
                             ", forces: [obstacle]}\nresistance: " + resistance + "\n",
                         "noSlip");
-    ResistanceMonitor monitor(c);
-    const int hull = c.mesh->FindPatch("obstacle");
-    StepForces forces;
-    forces.Set(hull, Uniform(*c.mesh, hull, Vector3(-per_face, 0, 0), Vector3(0, 0, 0)));
-    StepSummary step;
-    SteadyStatus steady;
-    History history;
-    StepRecord record{step, forces, steady};
-    record.last = true;
-    monitor.AfterStep(*c.solver, record, history);
-    return std::make_pair(monitor.Finish(*c.solver).at(0), c.mesh->patches()[hull].size);
+    const std::string text = ReportOfOneStep(c, Vector3(-per_face, 0, 0), Vector3(0, 0, 0));
+    return std::make_pair(text, c.mesh->patches()[c.mesh->FindPatch("obstacle")].size);
   };
   const std::string db = (tmp.path() / "db").string();
   report(db, "{hull: obstacle}", 1.0);
