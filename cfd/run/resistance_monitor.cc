@@ -56,6 +56,12 @@ void ResistanceMonitor::AfterStep(const PimpleSolver& solver, const StepRecord& 
 
 namespace {
 
+// A warning line of the report: logged now, and returned as its own line of the summary.
+std::string LoudLine(const std::string& warning) {
+  spdlog::warn("{}", warning);
+  return "\n  " + warning;
+}
+
 void Scalar(data::H5Writer& w, const std::string& name, double v, std::string_view units, std::string_view what) {
   w.WriteArray(name, std::span<const double>(&v, 1), {1}, units, what);
 }
@@ -196,11 +202,11 @@ std::string ResistanceMonitor::WriteWaveMaking(data::H5Writer& w) const {
   }
   Scalar(w, "C_P_double_body", cp_db, "1", "pressure resistance coefficient of the double-body run on the same grid");
   Scalar(w, "double_body_speed", u_db, "m/s", "speed of that double-body run");
-  const double rw = (rp / q - cp_db) * q;
-  Scalar(w, "C_W", rp / q - cp_db, "1", "wave-making part C_P - C_P(double body)");
+  const double cw = rp / q - cp_db, rw = cw * q;
+  Scalar(w, "C_W", cw, "1", "wave-making part C_P - C_P(double body)");
   Scalar(w, "R_W", rw, "N", "wave-making resistance C_W 0.5 rho S U^2");
   return fmt::format("; wave-making C_W = C_P - C_P(double body at {:.4g} m/s) = {:.5e} (R_W = {:.5g} N)", u_db,
-                     rp / q - cp_db, rw) +
+                     cw, rw) +
          NegativeWavePartWarning(rw, rows_.back()[1]);
 }
 
@@ -220,13 +226,11 @@ std::string ResistanceMonitor::NegativeWavePartWarning(double r_w, double r_t) c
   if (!(r_w < -resolution)) return "";
   const std::string warning = fmt::format(
       "WARNING: the free surface lowered the pressure resistance by {:.4g} N against the double body on the same "
-      "grid ({:.2g}% of R_T): the "
-      "waves of a ship in steady motion carry energy away, so their resistance is positive. This wave part is an "
+      "grid ({:.2g}% of R_T): the waves of a ship in steady motion carry energy away, so their resistance is positive. This wave part is an "
       "error of the free-surface condition on this hull or grid ({}; docs/formulation.md sections 3.1 and 5.3), "
       "and R_T is low by at least as much",
       -r_w, -100.0 * r_w / std::abs(r_t), LinearizationHint());
-  spdlog::warn("{}", warning);
-  return "\n  " + warning;
+  return LoudLine(warning);
 }
 
 std::vector<std::string> ResistanceMonitor::Finish(const PimpleSolver& solver) {
@@ -280,8 +284,7 @@ std::string ResistanceMonitor::UnresolvedStepsWarning(data::H5Writer& w) const {
       "pressure; with linearization local_flow compare the surface field base_flow_gain there "
       "(docs/formulation.md section 3.1)",
       faces.size(), jump, eta[worst], x.x(), x.y());
-  spdlog::warn("{}", warning);
-  return "\n  " + warning;
+  return LoudLine(warning);
 }
 
 std::string ResistanceMonitor::FrictionWarning() const {
@@ -293,8 +296,7 @@ std::string ResistanceMonitor::FrictionWarning() const {
       "1.0-1.1; outside [{}, {}] it is not a hull's boundary layer): R_F, R_T and what is built on them are off; "
       "check the hull y+ and the prism layers of the grid",
       options_.hull_patch, ratio, reference_.speed * reference_.length / nu_, kFrictionLow, kFrictionHigh);
-  spdlog::warn("{}", warning);
-  return "\n  " + warning;
+  return LoudLine(warning);
 }
 
 double ResistanceMonitor::FrictionRatio() const {
